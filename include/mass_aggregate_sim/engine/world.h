@@ -1,0 +1,151 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "mass_aggregate_sim/engine/force_generators.h"
+#include "mass_aggregate_sim/engine/particle_store.h"
+#include "mass_aggregate_sim/engine/status.h"
+#include "mass_aggregate_sim/engine/types.h"
+#include "mass_aggregate_sim/engine/world_config.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+class ImplicitEulerSolver;
+
+// A non-finite position or velocity found after a step.
+struct DivergenceEvent {
+  std::uint64_t step = 0;
+  Real time = 0.0;
+  ParticleId particle;
+  std::string what;
+};
+
+// The particle world: particles, force generators, and a fixed-step integrator. Time is passed in
+// (step, advance), never read from a clock. All mutation goes through this class so the caches it
+// keeps (d^dt, Verlet history, last acceleration) stay consistent; the same calls in the same
+// order give bit-identical states.
+class World {
+ public:
+  explicit World(const WorldConfig& config = WorldConfig{});
+  ~World();
+  World(const World& other);
+  World& operator=(const World& other);
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  const WorldConfig& config() const { return config_; }
+  // Refuses an invalid config and keeps the old one.
+  Status setConfig(const WorldConfig& config);
+
+  // --- particles ---
+  Result<ParticleId> addParticle(const ParticleSpec& spec);
+  // Also removes every force generator that refers to the particle.
+  Status removeParticle(ParticleId id);
+  Status setPosition(ParticleId id, const Vec3& position);
+  Status setVelocity(ParticleId id, const Vec3& velocity);
+  // dv = J / m; refused for an immovable particle.
+  Status applyImpulse(ParticleId id, const Vec3& impulse);
+  // Adds to the external force the particle feels during the next step only.
+  Status addForce(ParticleId id, const Vec3& force);
+  const ParticleStore& particles() const { return particles_; }
+
+  // --- force generators (each validated: live distinct particles, finite values, k, c >= 0) ---
+  Result<GeneratorId> addDrag(const Drag& drag);
+  Result<GeneratorId> addSpring(const Spring& spring);
+  Result<GeneratorId> addAnchoredSpring(const AnchoredSpring& spring);
+  Result<GeneratorId> addBungee(const Bungee& bungee);
+  Result<GeneratorId> addAnchoredBungee(const AnchoredBungee& bungee);
+  Result<GeneratorId> addBuoyancy(const Buoyancy& buoyancy);
+  Result<GeneratorId> addStiffSpring(const StiffSpring& spring);
+  Status removeGenerator(GeneratorId id);
+  const ForceGenerators& generators() const { return generators_; }
+
+  // Removes all particles and generators; time goes back to zero.
+  void clear();
+
+  // --- time ---
+  // One fixed step of dt, split into config().substeps substeps.
+  void step();
+  // Feeds a variable frame time (clamped to [0, max_frame_time]) into the accumulator and takes as
+  // many fixed steps as fit. Returns how many it took; the remainder waits for the next call.
+  int advance(Real frame_time);
+  // Fraction of a step left in the accumulator, for interpolating what is shown.
+  Real accumulatorAlpha() const { return accumulator_ / config_.dt; }
+  Real time() const { return time_origin_ + static_cast<Real>(steps_since_origin_) * config_.dt; }
+  std::uint64_t stepCount() const { return step_count_; }
+
+  // --- measurements ---
+  Real kineticEnergy() const;
+  // -sum m g.x over movable particles (zero at the origin).
+  Real gravitationalEnergy() const;
+  Real springEnergy() const;
+  Real totalEnergy() const { return kineticEnergy() + gravitationalEnergy() + springEnergy(); }
+  Vec3 linearMomentum() const;
+  // Hash of the full dynamic state (ids, positions, velocities, Verlet history, time): equal
+  // hashes mean bit-identical states.
+  std::uint64_t stateHash() const;
+
+  // Divergence: a non-finite position or velocity after a step. Detected in the step that
+  // produced it; the latest event is kept and the count grows.
+  const std::optional<DivergenceEvent>& lastDivergence() const { return last_divergence_; }
+  std::uint64_t divergenceCount() const { return divergence_count_; }
+
+  // Acceleration each particle had in the last substep (the average over RK4's stages).
+  ConstVec3Map lastAccelerations() const;
+
+ private:
+  template <typename Generator>
+  Result<GeneratorId> addGenerator(std::vector<Generator>& kind, Generator generator);
+  Status validateParticleRef(ParticleId id, const char* field) const;
+  void invalidateCaches();
+  void resizeScratch();
+  void refreshDampingFactors(Real h);
+  // Total acceleration at (x, v): generators, external forces, gravity, per-particle acceleration.
+  void computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
+                            const Eigen::Ref<const Vec3Array>& v, Real h,
+                            Eigen::Ref<Vec3Array> out) const;
+  void substep(Real h);
+  void integrateExplicitEuler(Real h);
+  void integrateSemiImplicitEuler(Real h);
+  void integratePositionVerlet(Real h);
+  void integrateVelocityVerlet(Real h);
+  void integrateRk4(Real h);
+  void integrateImplicitEuler(Real h);
+  void detectDivergence();
+
+  WorldConfig config_;
+  ParticleStore particles_;
+  ForceGenerators generators_;
+  GeneratorId next_generator_id_ = 1;
+
+  Real time_origin_ = 0.0;
+  std::uint64_t steps_since_origin_ = 0;
+  std::uint64_t step_count_ = 0;
+  Real accumulator_ = 0.0;
+
+  bool has_external_force_ = false;
+  // Cached d^dt per particle: valid for this substep length and damping version.
+  ScalarArray damping_factor_;
+  Real damping_factor_h_ = 0.0;
+  std::uint64_t damping_factor_version_ = ~std::uint64_t{0};
+  // Position Verlet's previous positions are valid for this substep length (0: re-seed them).
+  Real verlet_history_h_ = 0.0;
+  // Velocity Verlet reuses the last acceleration when nothing changed since.
+  bool acceleration_valid_ = false;
+
+  Vec3Array acceleration_;
+  Vec3Array scratch_x_;
+  Vec3Array scratch_v_;
+  Vec3Array stage_a_[3];
+  std::unique_ptr<ImplicitEulerSolver> implicit_solver_;
+
+  std::optional<DivergenceEvent> last_divergence_;
+  std::uint64_t divergence_count_ = 0;
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,22 @@
+#pragma once
+
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/Vector3.h>
+
+#include "mass_aggregate_sim/ParticleArray.h"
+#include "mass_aggregate_sim/engine/types.h"
+#include "mass_aggregate_sim/engine/world.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+
+geometry_msgs::Point toPointMsg(const engine::Vec3& v);
+geometry_msgs::Vector3 toVector3Msg(const engine::Vec3& v);
+engine::Vec3 fromMsg(const geometry_msgs::Point& p);
+engine::Vec3 fromMsg(const geometry_msgs::Vector3& v);
+
+// Every particle of the world; the header's stamp and frame are left for the caller.
+void fillParticleArray(const engine::World& world, ParticleArray& msg);
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

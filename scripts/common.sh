@@ -1,0 +1,55 @@
+# Shared set-up for scripts/run.sh and scripts/test.sh: installs what is missing, builds the
+# package in a catkin workspace outside the source tree, and sources it. Sourced, not executed.
+set -euo pipefail
+
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# The workspace lives in an ignored folder of the repo unless MAS_WS names another place.
+WS_DIR="${MAS_WS:-${REPO_DIR}/.ws}"
+# Debian's ROS needs Debian's python (catkin_pkg), not a pyenv interpreter first on PATH.
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+
+APT_PACKAGES=(
+  build-essential cmake
+  ros-core-dev catkin rosbash libroscpp-dev libtf2-ros-dev libgeometry-msgs-dev
+  libvisualization-msgs-dev libstd-srvs-dev libros-rosgraph-msgs-dev librostest-dev python3-rostest
+  python3-rosbag python3-geometry-msgs python3-visualization-msgs python3-std-srvs
+  libeigen3-dev libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev
+  ${MAS_EXTRA_APT_PACKAGES:-}
+)
+
+mas_install_missing() {
+  local missing=()
+  local pkg
+  for pkg in "${APT_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$pkg")
+    fi
+  done
+  if ((${#missing[@]})); then
+    echo "Installing missing packages: ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+      "${missing[@]}" >/dev/null
+  fi
+}
+
+mas_build() {
+  mkdir -p "${WS_DIR}/src"
+  ln -sfn "${REPO_DIR}" "${WS_DIR}/src/mass_aggregate_sim"
+  (
+    cd "${WS_DIR}"
+    catkin_make -DCMAKE_BUILD_TYPE="${MAS_BUILD_TYPE:-Release}" \
+      -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON \
+      ${MAS_CMAKE_ARGS:-} -j"${MAS_JOBS:-$(nproc)}" "$@" >"${WS_DIR}/build.log" 2>&1 || {
+      tail -n 60 "${WS_DIR}/build.log"
+      echo "Build failed: full log in ${WS_DIR}/build.log" >&2
+      exit 1
+    }
+  )
+  set +u
+  # shellcheck disable=SC1091
+  source "${WS_DIR}/devel/setup.bash"
+  set -u
+}

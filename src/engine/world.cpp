@@ -1,0 +1,444 @@
+#include "mass_aggregate_sim/engine/world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mass_aggregate_sim/engine/force_evaluation.h"
+#include "mass_aggregate_sim/engine/implicit_euler.h"
+#include "mass_aggregate_sim/engine/state_hash.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+bool finiteNonNegative(const Real value) { return std::isfinite(value) && value >= 0.0; }
+
+Status checkSpringValues(const Real stiffness, const Real rest_length, const Real damping) {
+  if (!finiteNonNegative(stiffness)) return Status::error("stiffness must be finite and >= 0");
+  if (!finiteNonNegative(rest_length)) return Status::error("rest_length must be finite and >= 0");
+  if (!finiteNonNegative(damping)) return Status::error("damping must be finite and >= 0");
+  return Status::ok();
+}
+
+template <typename Generator>
+bool refersTo(const Generator& g, const ParticleId id) {
+  if constexpr (std::is_same_v<Generator, Spring> || std::is_same_v<Generator, Bungee>) {
+    return g.a == id || g.b == id;
+  } else {
+    return g.particle == id;
+  }
+}
+
+template <typename Generator>
+void eraseReferencing(std::vector<Generator>& kind, const ParticleId id) {
+  kind.erase(std::remove_if(kind.begin(), kind.end(),
+                            [id](const Generator& g) { return refersTo(g, id); }),
+             kind.end());
+}
+
+template <typename Generator>
+bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
+  const auto it =
+      std::find_if(kind.begin(), kind.end(), [id](const Generator& g) { return g.id == id; });
+  if (it == kind.end()) return false;
+  kind.erase(it);
+  return true;
+}
+
+}  // namespace
+
+World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+  const Status valid = setConfig(config);
+  if (!valid) config_ = WorldConfig{};
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+World::World(const World& other)
+    : config_(other.config_),
+      particles_(other.particles_),
+      generators_(other.generators_),
+      next_generator_id_(other.next_generator_id_),
+      time_origin_(other.time_origin_),
+      steps_since_origin_(other.steps_since_origin_),
+      step_count_(other.step_count_),
+      accumulator_(other.accumulator_),
+      has_external_force_(other.has_external_force_),
+      damping_factor_(other.damping_factor_),
+      damping_factor_h_(other.damping_factor_h_),
+      damping_factor_version_(other.damping_factor_version_),
+      verlet_history_h_(other.verlet_history_h_),
+      acceleration_valid_(other.acceleration_valid_),
+      acceleration_(other.acceleration_),
+      implicit_solver_(std::make_unique<ImplicitEulerSolver>()),
+      last_divergence_(other.last_divergence_),
+      divergence_count_(other.divergence_count_) {}
+
+World& World::operator=(const World& other) {
+  if (this != &other) *this = World(other);
+  return *this;
+}
+
+Status World::setConfig(const WorldConfig& config) {
+  const Status valid = validateConfig(config);
+  if (!valid) return valid;
+  if (config.dt != config_.dt) {
+    // Keep time exact: restart counting steps of the new dt from the current time.
+    time_origin_ = time();
+    steps_since_origin_ = 0;
+    accumulator_ = 0.0;
+  }
+  config_ = config;
+  invalidateCaches();
+  return Status::ok();
+}
+
+Status World::validateParticleRef(const ParticleId id, const char* field) const {
+  if (particles_.contains(id)) return Status::ok();
+  return Status::error(std::string(field) + ": " + particles_.describeInvalid(id));
+}
+
+Result<ParticleId> World::addParticle(const ParticleSpec& spec) {
+  const Status valid = validateSpec(spec);
+  if (!valid) return valid;
+  const ParticleId id = particles_.add(spec);
+  invalidateCaches();
+  return id;
+}
+
+Status World::removeParticle(const ParticleId id) {
+  const Status valid = validateParticleRef(id, "particle");
+  if (!valid) return valid;
+  eraseReferencing(generators_.drags, id);
+  eraseReferencing(generators_.springs, id);
+  eraseReferencing(generators_.anchored_springs, id);
+  eraseReferencing(generators_.bungees, id);
+  eraseReferencing(generators_.anchored_bungees, id);
+  eraseReferencing(generators_.buoyancies, id);
+  eraseReferencing(generators_.stiff_springs, id);
+  const Status removed = particles_.remove(id);
+  invalidateCaches();
+  return removed;
+}
+
+Status World::setPosition(const ParticleId id, const Vec3& position) {
+  const auto dense = particles_.find(id);
+  if (!dense) return Status::error("particle: " + particles_.describeInvalid(id));
+  if (!position.allFinite()) return Status::error("position is not finite");
+  particles_.positions().col(*dense) = position;
+  invalidateCaches();
+  return Status::ok();
+}
+
+Status World::setVelocity(const ParticleId id, const Vec3& velocity) {
+  const auto dense = particles_.find(id);
+  if (!dense) return Status::error("particle: " + particles_.describeInvalid(id));
+  if (!velocity.allFinite()) return Status::error("velocity is not finite");
+  if (particles_.inverseMasses()[*dense] <= 0.0 && !velocity.isZero(0.0)) {
+    return Status::error("particle " + id.str() + " is immovable: its velocity stays zero");
+  }
+  particles_.velocities().col(*dense) = velocity;
+  invalidateCaches();
+  return Status::ok();
+}
+
+Status World::applyImpulse(const ParticleId id, const Vec3& impulse) {
+  const auto dense = particles_.find(id);
+  if (!dense) return Status::error("particle: " + particles_.describeInvalid(id));
+  if (!impulse.allFinite()) return Status::error("impulse is not finite");
+  const Real inverse_mass = particles_.inverseMasses()[*dense];
+  if (inverse_mass <= 0.0) {
+    return Status::error("particle " + id.str() + " is immovable: an impulse cannot move it");
+  }
+  // dv = J / m
+  particles_.velocities().col(*dense) += impulse * inverse_mass;
+  invalidateCaches();
+  return Status::ok();
+}
+
+Status World::addForce(const ParticleId id, const Vec3& force) {
+  const auto dense = particles_.find(id);
+  if (!dense) return Status::error("particle: " + particles_.describeInvalid(id));
+  if (!force.allFinite()) return Status::error("force is not finite");
+  particles_.forces().col(*dense) += force;
+  has_external_force_ = true;
+  invalidateCaches();
+  return Status::ok();
+}
+
+template <typename Generator>
+Result<GeneratorId> World::addGenerator(std::vector<Generator>& kind, Generator generator) {
+  generator.id = next_generator_id_++;
+  kind.push_back(generator);
+  invalidateCaches();
+  return generator.id;
+}
+
+Result<GeneratorId> World::addDrag(const Drag& drag) {
+  Status valid = validateParticleRef(drag.particle, "particle");
+  if (valid && (!finiteNonNegative(drag.k1) || !finiteNonNegative(drag.k2))) {
+    valid = Status::error("drag coefficients k1 and k2 must be finite and >= 0");
+  }
+  if (!valid) return valid;
+  return addGenerator(generators_.drags, drag);
+}
+
+Result<GeneratorId> World::addSpring(const Spring& spring) {
+  Status valid = validateParticleRef(spring.a, "a");
+  if (valid) valid = validateParticleRef(spring.b, "b");
+  if (valid && spring.a == spring.b) valid = Status::error("a and b must be different particles");
+  if (valid) valid = checkSpringValues(spring.stiffness, spring.rest_length, spring.damping);
+  if (!valid) return valid;
+  return addGenerator(generators_.springs, spring);
+}
+
+Result<GeneratorId> World::addAnchoredSpring(const AnchoredSpring& spring) {
+  Status valid = validateParticleRef(spring.particle, "particle");
+  if (valid && !spring.anchor.allFinite()) valid = Status::error("anchor is not finite");
+  if (valid) valid = checkSpringValues(spring.stiffness, spring.rest_length, spring.damping);
+  if (!valid) return valid;
+  return addGenerator(generators_.anchored_springs, spring);
+}
+
+Result<GeneratorId> World::addBungee(const Bungee& bungee) {
+  Status valid = validateParticleRef(bungee.a, "a");
+  if (valid) valid = validateParticleRef(bungee.b, "b");
+  if (valid && bungee.a == bungee.b) valid = Status::error("a and b must be different particles");
+  if (valid) valid = checkSpringValues(bungee.stiffness, bungee.rest_length, bungee.damping);
+  if (!valid) return valid;
+  return addGenerator(generators_.bungees, bungee);
+}
+
+Result<GeneratorId> World::addAnchoredBungee(const AnchoredBungee& bungee) {
+  Status valid = validateParticleRef(bungee.particle, "particle");
+  if (valid && !bungee.anchor.allFinite()) valid = Status::error("anchor is not finite");
+  if (valid) valid = checkSpringValues(bungee.stiffness, bungee.rest_length, bungee.damping);
+  if (!valid) return valid;
+  return addGenerator(generators_.anchored_bungees, bungee);
+}
+
+Result<GeneratorId> World::addBuoyancy(const Buoyancy& buoyancy) {
+  Status valid = validateParticleRef(buoyancy.particle, "particle");
+  if (valid && (!std::isfinite(buoyancy.max_depth) || buoyancy.max_depth <= 0.0)) {
+    valid = Status::error("max_depth must be finite and > 0");
+  }
+  if (valid && !finiteNonNegative(buoyancy.volume)) {
+    valid = Status::error("volume must be finite and >= 0");
+  }
+  if (valid && !finiteNonNegative(buoyancy.liquid_density)) {
+    valid = Status::error("liquid_density must be finite and >= 0");
+  }
+  if (valid && !std::isfinite(buoyancy.surface_height)) {
+    valid = Status::error("surface_height is not finite");
+  }
+  if (valid && (!buoyancy.up.allFinite() || buoyancy.up.norm() < 1e-9)) {
+    valid = Status::error("up must be a finite non-zero vector");
+  }
+  if (!valid) return valid;
+  Buoyancy normalised = buoyancy;
+  normalised.up.normalize();
+  return addGenerator(generators_.buoyancies, normalised);
+}
+
+Result<GeneratorId> World::addStiffSpring(const StiffSpring& spring) {
+  Status valid = validateParticleRef(spring.particle, "particle");
+  if (valid && !spring.anchor.allFinite()) valid = Status::error("anchor is not finite");
+  if (valid) valid = checkSpringValues(spring.stiffness, 0.0, spring.damping);
+  if (!valid) return valid;
+  return addGenerator(generators_.stiff_springs, spring);
+}
+
+Status World::removeGenerator(const GeneratorId id) {
+  const bool removed =
+      eraseById(generators_.drags, id) || eraseById(generators_.springs, id) ||
+      eraseById(generators_.anchored_springs, id) || eraseById(generators_.bungees, id) ||
+      eraseById(generators_.anchored_bungees, id) || eraseById(generators_.buoyancies, id) ||
+      eraseById(generators_.stiff_springs, id);
+  if (!removed) return Status::error("no force generator with id " + std::to_string(id));
+  invalidateCaches();
+  return Status::ok();
+}
+
+void World::clear() {
+  particles_.clear();
+  generators_.clear();
+  time_origin_ = 0.0;
+  steps_since_origin_ = 0;
+  step_count_ = 0;
+  accumulator_ = 0.0;
+  has_external_force_ = false;
+  last_divergence_.reset();
+  divergence_count_ = 0;
+  invalidateCaches();
+}
+
+void World::invalidateCaches() {
+  verlet_history_h_ = 0.0;
+  acceleration_valid_ = false;
+}
+
+void World::resizeScratch() {
+  const Eigen::Index n = static_cast<Eigen::Index>(particles_.size());
+  if (acceleration_.cols() != n) {
+    acceleration_.setZero(3, n);
+    acceleration_valid_ = false;
+  }
+}
+
+void World::refreshDampingFactors(const Real h) {
+  const std::size_t n = particles_.size();
+  if (damping_factor_h_ == h && damping_factor_version_ == particles_.dampingVersion() &&
+      static_cast<std::size_t>(damping_factor_.size()) == n) {
+    return;
+  }
+  const auto damping = particles_.dampings();
+  damping_factor_.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) damping_factor_[i] = std::pow(damping[i], h);
+  damping_factor_h_ = h;
+  damping_factor_version_ = particles_.dampingVersion();
+}
+
+void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
+                                 const Eigen::Ref<const Vec3Array>& v, const Real h,
+                                 Eigen::Ref<Vec3Array> out) const {
+  const std::size_t n = particles_.size();
+  const auto inverse_mass = particles_.inverseMasses();
+  const auto mobility = particles_.mobility();
+  const auto own_acceleration = particles_.accelerations();
+  const Vec3 g = config_.gravity;
+  if (generators_.empty() && !has_external_force_) {
+    for (std::size_t i = 0; i < n; ++i) out.col(i) = mobility[i] * (g + own_acceleration.col(i));
+    return;
+  }
+  out = particles_.forces();
+  accumulateGeneratorForces(generators_, particles_, x, v, g.norm(), h, out);
+  // a = F/m + g + a_own, zero for immovable particles
+  for (std::size_t i = 0; i < n; ++i) {
+    out.col(i) = out.col(i) * inverse_mass[i] + mobility[i] * (g + own_acceleration.col(i));
+  }
+}
+
+void World::step() {
+  const Real h = config_.dt / static_cast<Real>(config_.substeps);
+  for (int s = 0; s < config_.substeps; ++s) substep(h);
+  if (has_external_force_) {
+    particles_.forces().setZero();
+    has_external_force_ = false;
+    acceleration_valid_ = false;
+  }
+  ++steps_since_origin_;
+  ++step_count_;
+  detectDivergence();
+}
+
+int World::advance(const Real frame_time) {
+  const Real clamped = std::isfinite(frame_time)
+                           ? std::clamp(frame_time, Real{0.0}, config_.max_frame_time)
+                           : Real{0.0};
+  accumulator_ += clamped;
+  int steps = 0;
+  while (accumulator_ >= config_.dt) {
+    step();
+    accumulator_ -= config_.dt;
+    ++steps;
+  }
+  return steps;
+}
+
+void World::substep(const Real h) {
+  resizeScratch();
+  refreshDampingFactors(h);
+  switch (config_.integrator) {
+    case Integrator::kExplicitEuler:
+      integrateExplicitEuler(h);
+      break;
+    case Integrator::kSemiImplicitEuler:
+      integrateSemiImplicitEuler(h);
+      break;
+    case Integrator::kPositionVerlet:
+      integratePositionVerlet(h);
+      break;
+    case Integrator::kVelocityVerlet:
+      integrateVelocityVerlet(h);
+      break;
+    case Integrator::kRk4:
+      integrateRk4(h);
+      break;
+    case Integrator::kImplicitEuler:
+      integrateImplicitEuler(h);
+      break;
+  }
+}
+
+void World::detectDivergence() {
+  const auto x = particles_.positions();
+  const auto v = particles_.velocities();
+  if (x.allFinite() && v.allFinite()) return;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const bool bad_x = !x.col(i).allFinite();
+    if (bad_x || !v.col(i).allFinite()) {
+      last_divergence_ = DivergenceEvent{step_count_, time(), particles_.idAt(i),
+                                         bad_x ? "position is not finite" : "velocity is not finite"};
+      ++divergence_count_;
+      return;
+    }
+  }
+}
+
+ConstVec3Map World::lastAccelerations() const {
+  return ConstVec3Map(acceleration_.data(), 3, acceleration_.cols());
+}
+
+Real World::kineticEnergy() const {
+  const auto v = particles_.velocities();
+  const auto inverse_mass = particles_.inverseMasses();
+  Real energy = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass[i] > 0.0) energy += 0.5 * v.col(i).squaredNorm() / inverse_mass[i];
+  }
+  return energy;
+}
+
+Real World::gravitationalEnergy() const {
+  const auto x = particles_.positions();
+  const auto inverse_mass = particles_.inverseMasses();
+  Real energy = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass[i] > 0.0) energy -= config_.gravity.dot(x.col(i)) / inverse_mass[i];
+  }
+  return energy;
+}
+
+Real World::springEnergy() const { return generatorPotentialEnergy(generators_, particles_); }
+
+Vec3 World::linearMomentum() const {
+  const auto v = particles_.velocities();
+  const auto inverse_mass = particles_.inverseMasses();
+  Vec3 momentum = Vec3::Zero();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass[i] > 0.0) momentum += v.col(i) / inverse_mass[i];
+  }
+  return momentum;
+}
+
+std::uint64_t World::stateHash() const {
+  StateHasher hasher;
+  hasher.add(static_cast<std::uint64_t>(particles_.size()));
+  hasher.add(step_count_);
+  hasher.add(time());
+  const auto x = particles_.positions();
+  const auto v = particles_.velocities();
+  const auto previous = particles_.previousPositions();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    hasher.add(particles_.idAt(i).packed());
+    hasher.add(x.col(i));
+    hasher.add(v.col(i));
+    if (config_.integrator == Integrator::kPositionVerlet) hasher.add(previous.col(i));
+  }
+  return hasher.value();
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim
