@@ -35,19 +35,34 @@ mas_install_missing() {
   fi
 }
 
-mas_build() {
-  mkdir -p "${WS_DIR}/src"
-  ln -sfn "${REPO_DIR}" "${WS_DIR}/src/mass_aggregate_sim"
+# mas_build_in WS [cmake args...] -- [targets...]: builds the package in workspace WS.
+mas_build_in() {
+  local ws="$1"
+  shift
+  local cmake_args=()
+  while (($#)) && [ "$1" != "--" ]; do
+    cmake_args+=("$1")
+    shift
+  done
+  (($#)) && shift
+  mkdir -p "${ws}/src"
+  ln -sfn "${REPO_DIR}" "${ws}/src/mass_aggregate_sim"
   (
-    cd "${WS_DIR}"
-    catkin_make -DCMAKE_BUILD_TYPE="${MAS_BUILD_TYPE:-Release}" \
-      -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON \
-      ${MAS_CMAKE_ARGS:-} -j"${MAS_JOBS:-$(nproc)}" "$@" >"${WS_DIR}/build.log" 2>&1 || {
-      tail -n 60 "${WS_DIR}/build.log"
-      echo "Build failed: full log in ${WS_DIR}/build.log" >&2
+    cd "${ws}"
+    catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON \
+      "${cmake_args[@]}" -j"${MAS_JOBS:-$(nproc)}" "$@" >"${ws}/build.log" 2>&1 || {
+      tail -n 60 "${ws}/build.log"
+      echo "Build failed: full log in ${ws}/build.log" >&2
       exit 1
     }
   )
+}
+
+# mas_build [targets...]: the normal build in WS_DIR, then sources it.
+mas_build() {
+  # shellcheck disable=SC2086
+  mas_build_in "${WS_DIR}" -DCMAKE_BUILD_TYPE="${MAS_BUILD_TYPE:-Release}" ${MAS_CMAKE_ARGS:-} \
+    -- "$@"
   set +u
   # shellcheck disable=SC1091
   source "${WS_DIR}/devel/setup.bash"

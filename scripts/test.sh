@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, runs every test (gtest and rostest), and ends with the line
-# "N passed, N failed" computed from the test result files. Exits non-zero on any failure.
+# Installs what is missing, builds, runs every test, and ends with the line "N passed, N failed"
+# counted from the JUnit XML result files. Exits non-zero on any failure. The stages:
+#   1. Release build; gtest (engine, node) and rostest through `catkin_make run_tests`
+#   2. the gtest suites again under AddressSanitizer + UndefinedBehaviorSanitizer
+# Set MAS_SKIP_SANITIZERS=1 to skip stage 2 while iterating locally (CI never sets it).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 mas_install_missing
 mas_build all tests
@@ -11,14 +14,23 @@ set +e
 (cd "${WS_DIR}" && catkin_make run_tests -j1 >"${WS_DIR}/test.log" 2>&1)
 run_status=$?
 set -e
-grep -E "^\[ *(RUN|OK|FAILED|PASSED) *\]|^\[Testcase|FAILURE|ERROR" "${WS_DIR}/test.log" \
-  | grep -vE "^\[ RUN" | tail -n 200 || true
+grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ (order|energy) \]|^\[Testcase|FAILURE|ERROR" \
+  "${WS_DIR}/test.log" | tail -n 300 || true
 if [ "${run_status}" -ne 0 ]; then
   echo "catkin_make run_tests exited ${run_status}; see ${WS_DIR}/test.log" >&2
 fi
+
+sanitizer_status=0
+if [ "${MAS_SKIP_SANITIZERS:-0}" != "1" ]; then
+  set +e
+  bash "${REPO_DIR}/scripts/sanitizer_tests.sh" "${results}/sanitizers"
+  sanitizer_status=$?
+  set -e
+fi
+
 # The closing "N passed, N failed" line, counted from the result files themselves.
 set +e
 /usr/bin/python3 "${REPO_DIR}/scripts/count_results.py" "${results}"
 count_status=$?
 set -e
-[ "${count_status}" -eq 0 ] && [ "${run_status}" -eq 0 ]
+[ "${count_status}" -eq 0 ] && [ "${run_status}" -eq 0 ] && [ "${sanitizer_status}" -eq 0 ]
