@@ -16,11 +16,14 @@ APT_PACKAGES=(
   libeigen3-dev libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev
   ${MAS_EXTRA_APT_PACKAGES:-}
 )
+# Needed only by scripts/test.sh: clang's libFuzzer for the fuzzing stage.
+TEST_APT_PACKAGES=(clang libclang-rt-14-dev pkg-config)
 
+# mas_install_missing [extra packages...]: installs whatever of APT_PACKAGES and the extras is missing.
 mas_install_missing() {
   local missing=()
   local pkg
-  for pkg in "${APT_PACKAGES[@]}"; do
+  for pkg in "${APT_PACKAGES[@]}" "$@"; do
     if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
       missing+=("$pkg")
     fi

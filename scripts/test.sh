@@ -3,9 +3,10 @@
 # counted from the JUnit XML result files. Exits non-zero on any failure. The stages:
 #   1. Release build; gtest (engine, node) and rostest through `catkin_make run_tests`
 #   2. the gtest suites again under AddressSanitizer + UndefinedBehaviorSanitizer
-# Set MAS_SKIP_SANITIZERS=1 to skip stage 2 while iterating locally (CI never sets it).
+#   3. each libFuzzer target for MAS_FUZZ_SECONDS (default 60) under ASan + UBSan
+# MAS_SKIP_SANITIZERS=1 / MAS_SKIP_FUZZ=1 skip stages 2 / 3 while iterating locally (CI sets neither).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-mas_install_missing
+mas_install_missing "${TEST_APT_PACKAGES[@]}"
 mas_build all tests
 
 results="${WS_DIR}/build/test_results"
@@ -28,9 +29,18 @@ if [ "${MAS_SKIP_SANITIZERS:-0}" != "1" ]; then
   set -e
 fi
 
+fuzz_status=0
+if [ "${MAS_SKIP_FUZZ:-0}" != "1" ]; then
+  set +e
+  bash "${REPO_DIR}/scripts/fuzz.sh" "${results}/fuzz"
+  fuzz_status=$?
+  set -e
+fi
+
 # The closing "N passed, N failed" line, counted from the result files themselves.
 set +e
 /usr/bin/python3 "${REPO_DIR}/scripts/count_results.py" "${results}"
 count_status=$?
 set -e
-[ "${count_status}" -eq 0 ] && [ "${run_status}" -eq 0 ] && [ "${sanitizer_status}" -eq 0 ]
+[ "${count_status}" -eq 0 ] && [ "${run_status}" -eq 0 ] && [ "${sanitizer_status}" -eq 0 ] &&
+  [ "${fuzz_status}" -eq 0 ]
