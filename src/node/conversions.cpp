@@ -46,7 +46,7 @@ void fillParticleArray(const engine::World& world, ParticleArray& msg) {
 }
 
 engine::Result<engine::ParticleSpec> toParticleSpec(const ParticleSpec& msg,
-                                                   const double default_radius) {
+                                                    const double default_radius) {
   engine::ParticleSpec spec;
   if (!msg.fixed && !(std::isfinite(msg.mass) && msg.mass > 0.0)) {
     return engine::Status::error("mass must be finite and > 0 (or fixed true), got " +

@@ -1,5 +1,7 @@
 #include "mass_aggregate_sim/node/scene_loader.h"
 
+#include <xmlrpcpp/XmlRpcException.h>
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -79,20 +81,19 @@ class SceneBuilder {
     }
     config.dt = 1.0 / loaded.rate;
     config.max_frame_time = std::max(config.max_frame_time, config.dt);
-    config.substeps =
-        overrides_.substeps ? *overrides_.substeps : intOr(scene, key, "substeps", 1);
+    config.substeps = overrides_.substeps ? *overrides_.substeps : intOr(scene, key, "substeps", 1);
     if (config.substeps < 1 || config.substeps > 1000) {
       throw ParamError(overrides_.substeps ? "~substeps" : key + ".substeps",
                        "must be in [1, 1000]");
     }
-    const std::string integrator =
-        overrides_.integrator ? *overrides_.integrator
-                              : stringOr(scene, key, "integrator", "semi_implicit_euler");
+    const std::string integrator = overrides_.integrator
+                                       ? *overrides_.integrator
+                                       : stringOr(scene, key, "integrator", "semi_implicit_euler");
     const auto parsed = engine::parseIntegrator(integrator);
     if (!parsed) {
-      throw ParamError(overrides_.integrator ? "~integrator" : key + ".integrator",
-                       "unknown integrator '" + integrator + "' (known: " +
-                           engine::integratorNames() + ")");
+      throw ParamError(
+          overrides_.integrator ? "~integrator" : key + ".integrator",
+          "unknown integrator '" + integrator + "' (known: " + engine::integratorNames() + ")");
     }
     config.integrator = *parsed;
     config.gravity =
@@ -119,9 +120,9 @@ class SceneBuilder {
     for (int i = 0; i < list.size(); ++i) {
       const std::string k = indexed(key, i);
       XmlRpcValue& p = list[i];
-      checkKeys(p, k,
-                {"name", "position", "velocity", "acceleration", "mass", "fixed", "radius",
-                 "damping"});
+      checkKeys(
+          p, k,
+          {"name", "position", "velocity", "acceleration", "mass", "fixed", "radius", "damping"});
       ParticleSpec spec = readParticleProperties(p, k);
       spec.name = stringOr(p, k, "name", "");
       if (!has(p, "position")) throw ParamError(k + ".position", "is required");
@@ -192,8 +193,8 @@ class SceneBuilder {
       const std::string k = indexed(key, i);
       XmlRpcValue& block = list[i];
       checkKeys(block, k,
-                {"name", "origin", "count", "spacing", "jitter", "seed", "velocity",
-                 "acceleration", "mass", "fixed", "radius", "damping"});
+                {"name", "origin", "count", "spacing", "jitter", "seed", "velocity", "acceleration",
+                 "mass", "fixed", "radius", "damping"});
       const std::string name = stringOr(block, k, "name", "");
       const Vec3 origin = vec3Or(block, k, "origin", Vec3::Zero());
       if (!has(block, "count")) throw ParamError(k + ".count", "is required ([nx, ny, nz])");

@@ -85,8 +85,8 @@ Result<LoadedScene> readScene(ros::NodeHandle& nh, const std::size_t max_particl
   }
   std::vector<double> gravity;
   if (nh.getParam("gravity", gravity)) {
-    if (gravity.size() != 3 || !std::all_of(gravity.begin(), gravity.end(),
-                                             [](double g) { return std::isfinite(g); })) {
+    if (gravity.size() != 3 ||
+        !std::all_of(gravity.begin(), gravity.end(), [](double g) { return std::isfinite(g); })) {
       return Status::error("~gravity: expected [x, y, z] of finite numbers (m/s^2)");
     }
     overrides.gravity = Vec3(gravity[0], gravity[1], gravity[2]);
@@ -109,7 +109,8 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   stats_pub_ = nh_.advertise<SimStats>("stats", 1);
   commands_pub_ = nh_.advertise<Command>("commands", 100);
-  if (params_.publish_clock) clock_pub_ = ros::NodeHandle().advertise<rosgraph_msgs::Clock>("/clock", 1);
+  if (params_.publish_clock)
+    clock_pub_ = ros::NodeHandle().advertise<rosgraph_msgs::Clock>("/clock", 1);
   services_.push_back(nh_.advertiseService("spawn", &SimNode::onSpawn, this));
   services_.push_back(nh_.advertiseService("remove", &SimNode::onRemove, this));
   services_.push_back(nh_.advertiseService("set_state", &SimNode::onSetState, this));
@@ -177,7 +178,7 @@ bool SimNode::onSpawn(Spawn::Request& req, Spawn::Response& res) {
     if (!pose) return answer(res, false, where + pose.message());
     engine::ParticleSpec s = *spec;
     s.position = *pose * s.position;
-    s.velocity = pose->linear() * s.velocity;
+    s.velocity = pose.value().linear() * s.velocity;
     specs.push_back(s);
     resolved.particles[i].frame_id.clear();
     resolved.particles[i].position = toPointMsg(s.position);
@@ -192,7 +193,7 @@ bool SimNode::onSpawn(Spawn::Request& req, Spawn::Response& res) {
     for (const auto id : *ids) res.ids.push_back(id.packed());
     recordCommand("spawn", resolved);
     answer(res, true,
-           "spawned " + std::to_string(ids->size()) + " particle(s) at " +
+           "spawned " + std::to_string(ids.value().size()) + " particle(s) at " +
                describeTime(sim_.world()));
   });
 }
@@ -212,7 +213,7 @@ bool SimNode::onRemove(Remove::Request& req, Remove::Response& res) {
     }
     for (const auto id : *removed) res.removed.push_back(id.packed());
     recordCommand("remove", req);
-    answer(res, true, "removed " + std::to_string(removed->size()) + " particle(s)");
+    answer(res, true, "removed " + std::to_string(removed.value().size()) + " particle(s)");
   });
 }
 
@@ -228,7 +229,7 @@ bool SimNode::onSetState(SetState::Request& req, SetState::Response& res) {
     resolved.position = toPointMsg(*position);
   }
   if (req.set_velocity) {
-    velocity = pose->linear() * fromMsg(req.velocity);
+    velocity = pose.value().linear() * fromMsg(req.velocity);
     resolved.velocity = toVector3Msg(*velocity);
   }
   const ParticleRef ref = refOf(req.id, req.name);
@@ -259,12 +260,13 @@ bool SimNode::onApplyForce(ApplyForce::Request& req, ApplyForce::Response& res) 
       request.mode = ForceMode::kClear;
       break;
     default:
-      return answer(res, false, "mode must be ONE_STEP (0), DURATION (1), UNTIL_CLEARED (2) or CLEAR (3)");
+      return answer(res, false,
+                    "mode must be ONE_STEP (0), DURATION (1), UNTIL_CLEARED (2) or CLEAR (3)");
   }
   const auto pose = frameToWorld(req.frame_id);
   if (!pose) return answer(res, false, pose.message());
   request.particle = refOf(req.id, req.name);
-  request.force = pose->linear() * fromMsg(req.force);
+  request.force = pose.value().linear() * fromMsg(req.force);
   request.duration = req.duration;
   ApplyForce::Request resolved = req;
   resolved.frame_id.clear();
@@ -280,17 +282,17 @@ bool SimNode::onApplyForce(ApplyForce::Request& req, ApplyForce::Response& res) 
     answer(res, true,
            request.mode == ForceMode::kClear
                ? "cleared the sustained forces on " + nameOf(request.particle)
-               : request.mode == ForceMode::kUntilCleared
-                     ? "force on " + nameOf(request.particle) + " until cleared"
-                     : "force on " + nameOf(request.particle) + " for " +
-                           std::to_string(*steps) + " step(s)");
+           : request.mode == ForceMode::kUntilCleared
+               ? "force on " + nameOf(request.particle) + " until cleared"
+               : "force on " + nameOf(request.particle) + " for " + std::to_string(*steps) +
+                     " step(s)");
   });
 }
 
 bool SimNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res) {
   const auto pose = frameToWorld(req.frame_id);
   if (!pose) return answer(res, false, pose.message());
-  const Vec3 impulse = pose->linear() * fromMsg(req.impulse);
+  const Vec3 impulse = pose.value().linear() * fromMsg(req.impulse);
   ApplyImpulse::Request resolved = req;
   resolved.frame_id.clear();
   resolved.impulse = toVector3Msg(impulse);
@@ -332,8 +334,8 @@ bool SimNode::onAddLink(AddLink::Request& req, AddLink::Response& res) {
   request.max_length = req.max_length;
   request.length = req.length;
   request.restitution = req.restitution;
-  for (const double value : {req.stiffness, req.damping, req.rest_length, req.max_length,
-                             req.length, req.restitution}) {
+  for (const double value :
+       {req.stiffness, req.damping, req.rest_length, req.max_length, req.length, req.restitution}) {
     if (!std::isfinite(value)) return answer(res, false, "every number must be finite");
   }
   return runOnWorldThread(res, [&] {
@@ -389,7 +391,8 @@ bool SimNode::onStep(Step::Request& req, Step::Response& res) {
     res.step = sim_.world().stepCount();
     res.time = sim_.world().time();
     res.state_hash = sim_.world().stateHash();
-    answer(res, true, "took " + std::to_string(req.steps) + " step(s): " + describeTime(sim_.world()));
+    answer(res, true,
+           "took " + std::to_string(req.steps) + " step(s): " + describeTime(sim_.world()));
   });
 }
 
@@ -427,6 +430,9 @@ void SimNode::publishClock() {
 }
 
 void SimNode::publishTf(const ros::Time& stamp) {
+  // tf2 drops a second transform with the same stamp (paused, or just after a reset).
+  if (stamp <= last_tf_stamp_) return;
+  last_tf_stamp_ = stamp;
   const engine::ParticleStore& particles = sim_.world().particles();
   const auto x = particles.positions();
   std::vector<geometry_msgs::TransformStamped> transforms;
@@ -481,8 +487,8 @@ void SimNode::publishState(const Clock::time_point now) {
   stats.divergence_events = world.divergenceCount();
   if (world.lastDivergence()) {
     const auto& d = *world.lastDivergence();
-    stats.last_divergence = "step " + std::to_string(d.step) + ", particle " + d.particle.str() +
-                            ": " + d.what;
+    stats.last_divergence =
+        "step " + std::to_string(d.step) + ", particle " + d.particle.str() + ": " + d.what;
   }
   stats.commands_applied = commands_applied_;
   stats.state_hash = world.stateHash();
@@ -498,7 +504,8 @@ void SimNode::publishState(const Clock::time_point now) {
 void SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_));
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_));
   const auto publish_period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / params_.publish_rate));
   ROS_INFO("scene '%s': %zu particles, %zu force generators, %.1f Hz%s", scene_name_.c_str(),

@@ -57,7 +57,7 @@ Result<std::vector<ParticleId>> Simulation::remove(const std::vector<ParticleRef
     const auto id = resolve(ref);
     if (!id) return id.status();
     if (!seen.insert(*id).second) {
-      return Status::error("particle " + std::to_string(id->packed()) + " is named twice");
+      return Status::error("particle " + std::to_string(id.value().packed()) + " is named twice");
     }
     ids.push_back(*id);
   }
@@ -79,7 +79,7 @@ Status Simulation::setState(const ParticleRef& ref, const std::optional<Vec3>& p
   if (velocity && !velocity->allFinite()) return Status::error("velocity is not finite");
   const auto dense = *world_.particles().find(*id);
   if (velocity && world_.particles().inverseMasses()[dense] <= 0.0 && !velocity->isZero(0.0)) {
-    return Status::error("particle " + std::to_string(id->packed()) +
+    return Status::error("particle " + std::to_string(id.value().packed()) +
                          " is immovable: its velocity stays zero");
   }
   if (position) world_.setPosition(*id, *position);
@@ -96,7 +96,7 @@ Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
                                     [&](const SustainedForce& f) { return f.particle == *id; }),
                      sustained_.end());
     if (sustained_.size() == before) {
-      return Status::error("particle " + std::to_string(id->packed()) +
+      return Status::error("particle " + std::to_string(id.value().packed()) +
                            " has no sustained force to clear");
     }
     return std::uint64_t{0};

@@ -94,10 +94,10 @@ std::string readString(XmlRpcValue& value, const std::string& key) {
 
 engine::Vec3 readVec3(XmlRpcValue& value, const std::string& key) {
   if (value.getType() != XmlRpcValue::TypeArray || value.size() != 3) {
-    throw ParamError(key, "expected [x, y, z], got " + typeName(value) +
-                              (value.getType() == XmlRpcValue::TypeArray
-                                   ? " of " + std::to_string(value.size())
-                                   : std::string()));
+    throw ParamError(
+        key, "expected [x, y, z], got " + typeName(value) +
+                 (value.getType() == XmlRpcValue::TypeArray ? " of " + std::to_string(value.size())
+                                                            : std::string()));
   }
   engine::Vec3 v;
   for (int i = 0; i < 3; ++i) v[i] = readReal(value[i], key + "[" + std::to_string(i) + "]");

@@ -102,6 +102,7 @@ class SimNode {
   // /clock = clock_offset_ + world time: a reset adds the time reached so far to the offset, so
   // the clock never goes back.
   double clock_offset_ = 0.0;
+  ros::Time last_tf_stamp_;
   std::uint64_t commands_applied_ = 0;
   std::uint64_t overruns_ = 0;
   // Per publish window, for the real-time factor and the step cost.
