@@ -102,6 +102,7 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
       rate_(scene.rate),
       sim_(scene.world, params.limits),
       paused_(params.paused),
+      scene_hash_(scene.world.stateHash()),
       markers_(params.frame_id, params.tension_scale),
       nh_(private_nh),
       tf_listener_(tf_buffer_) {
@@ -379,14 +380,14 @@ bool SimNode::onStep(Step::Request& req, Step::Response& res) {
       answer(res, false, "the simulation is running: pause it first (~pause)");
       return;
     }
-    recordCommand("step", req);
-    const Status stepped = sim_.stepMany(req.steps);
-    if (!stepped) {
-      // Refused before any step: take the record back by publishing nothing more; the replay
-      // ignores step commands (the stamps of later commands carry the steps).
-      answer(res, false, stepped.message());
+    if (req.steps == 0 || req.steps > params_.limits.max_steps_per_request) {
+      answer(res, false,
+             "steps must be in [1, " + std::to_string(params_.limits.max_steps_per_request) +
+                 "], got " + std::to_string(req.steps));
       return;
     }
+    recordCommand("step", req);
+    sim_.stepMany(req.steps);
     publishClock();
     res.step = sim_.world().stepCount();
     res.time = sim_.world().time();
@@ -492,6 +493,7 @@ void SimNode::publishState(const Clock::time_point now) {
   }
   stats.commands_applied = commands_applied_;
   stats.state_hash = world.stateHash();
+  stats.scene_hash = scene_hash_;
   stats_pub_.publish(stats);
 
   window_start_ = now;

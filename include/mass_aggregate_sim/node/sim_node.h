@@ -85,6 +85,7 @@ class SimNode {
   double rate_;
   Simulation sim_;
   bool paused_;
+  std::uint64_t scene_hash_;
   RequestQueue queue_;
   MarkerBuilder markers_;
 
