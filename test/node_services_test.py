@@ -8,6 +8,7 @@ import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped, Vector3
+from rosgraph_msgs.msg import Clock
 
 from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
 from sim_client import SimClient, spec
@@ -161,6 +162,20 @@ class NodeServicesTest(unittest.TestCase):
         self.assertFalse(refused.success)
         self.assertIn('pause it first', refused.message)
         self.assertTrue(self.sim.pause(True).success)
+
+    def test_clock_follows_sim_time_and_never_goes_back(self):
+        clocks = []
+        sub = rospy.Subscriber('/clock', Clock, lambda msg: clocks.append(msg.clock.to_sec()))
+        rospy.sleep(0.3)
+        self.assertTrue(self.sim.step(30).success)
+        self.assertTrue(self.sim.reset().success)
+        self.assertTrue(self.sim.step(10).success)
+        rospy.sleep(0.3)
+        sub.unregister()
+        self.assertGreater(len(clocks), 2)
+        self.assertEqual(clocks, sorted(clocks))
+        # After the reset the clock continues from where it was: +10 steps past the +30.
+        self.assertGreaterEqual(clocks[-1] - clocks[0], 40 * DT - 1e-9)
 
     def test_links_are_added_and_removed(self):
         a = self.spawn_one(name='la', x=(0.0, 0.0, 5.0))

@@ -519,10 +519,9 @@ void SimNode::run() {
   while (ros::ok()) {
     // Requests first: they are applied at the boundary before the step.
     queue_.drain();
-    if (!paused_) {
-      stepOnce();
-      publishClock();
-    }
+    if (!paused_) stepOnce();
+    // Every tick, paused or not, so nodes on simulated time always hear the clock.
+    publishClock();
     Clock::time_point now = Clock::now();
     if (now >= next_publish) {
       publishState(now);
