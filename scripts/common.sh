@@ -12,7 +12,8 @@ APT_PACKAGES=(
   build-essential cmake
   ros-core-dev catkin rosbash libroscpp-dev libtf2-ros-dev libgeometry-msgs-dev
   libvisualization-msgs-dev libstd-srvs-dev libros-rosgraph-msgs-dev librostest-dev python3-rostest
-  python3-rosbag python3-geometry-msgs python3-visualization-msgs python3-std-srvs
+  python3-rosbag python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-rospy
+  python3-tf2-ros
   libeigen3-dev libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev
   ${MAS_EXTRA_APT_PACKAGES:-}
 )

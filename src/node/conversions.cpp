@@ -1,5 +1,8 @@
 #include "mass_aggregate_sim/node/conversions.h"
 
+#include <cmath>
+#include <string>
+
 namespace mass_aggregate_sim {
 namespace node {
 
@@ -29,6 +32,7 @@ void fillParticleArray(const engine::World& world, ParticleArray& msg) {
   const auto inverse_mass = particles.inverseMasses();
   const auto radius = particles.radii();
   msg.step = world.stepCount();
+  msg.time = world.time();
   msg.particles.resize(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i) {
     Particle& p = msg.particles[i];
@@ -39,6 +43,27 @@ void fillParticleArray(const engine::World& world, ParticleArray& msg) {
     p.mass = inverse_mass[i] > 0.0 ? 1.0 / inverse_mass[i] : 0.0;
     p.radius = radius[i];
   }
+}
+
+engine::Result<engine::ParticleSpec> toParticleSpec(const ParticleSpec& msg,
+                                                    const double default_radius) {
+  engine::ParticleSpec spec;
+  if (!msg.fixed && !(std::isfinite(msg.mass) && msg.mass > 0.0)) {
+    return engine::Status::error("mass must be finite and > 0 (or fixed true), got " +
+                                 std::to_string(msg.mass));
+  }
+  spec.inverse_mass = msg.fixed ? 0.0 : 1.0 / msg.mass;
+  spec.position = fromMsg(msg.position);
+  spec.velocity = fromMsg(msg.velocity);
+  spec.radius = msg.radius == 0.0 ? default_radius : msg.radius;
+  spec.damping = msg.damping == 0.0 ? 1.0 : msg.damping;
+  spec.name = msg.name;
+  if (msg.fixed && !spec.velocity.isZero(0.0)) {
+    return engine::Status::error("a fixed particle cannot have a velocity");
+  }
+  const engine::Status valid = engine::validateSpec(spec);
+  if (!valid) return valid;
+  return spec;
 }
 
 }  // namespace node

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <ros/time.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <set>
+#include <string>
+#include <utility>
+
+#include "mass_aggregate_sim/engine/world.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+
+// Builds the RViz view of a world: particles as one SPHERE_LIST per radius (so 10,000 particles
+// stay a handful of markers), links as one LINE_LIST coloured by tension (blue compressed, white
+// slack, red stretched, saturating at tension_scale), colliders as their shapes. Remembers what it
+// published so a marker that disappears gets a DELETE, and starts with DELETEALL after restart().
+class MarkerBuilder {
+ public:
+  MarkerBuilder(std::string frame_id, double tension_scale);
+
+  visualization_msgs::MarkerArray build(const engine::World& world, const ros::Time& stamp);
+  // The next array starts with DELETEALL (after a reset or a new scene).
+  void restart();
+
+ private:
+  void addParticles(const engine::World& world, const ros::Time& stamp,
+                    visualization_msgs::MarkerArray& out) const;
+  void addLinks(const engine::World& world, const ros::Time& stamp,
+                visualization_msgs::MarkerArray& out) const;
+  visualization_msgs::Marker makeMarker(const std::string& ns, int id, int type,
+                                        const ros::Time& stamp) const;
+
+  std::string frame_id_;
+  double tension_scale_;
+  bool delete_all_ = true;
+  std::set<std::pair<std::string, int>> published_;
+};
+
+// The colour of a link carrying `tension` (N, negative when compressed).
+std_msgs::ColorRGBA tensionColor(double tension, double tension_scale);
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <future>
+#include <memory>
+#include <mutex>
+
+namespace mass_aggregate_sim {
+namespace node {
+
+// Hands work from the service threads to the one thread that owns the world. A caller blocks in
+// run() until the owner has applied its job at a step boundary (drain()), or the owner has
+// stopped; every queued job either runs exactly once or is cancelled, never dropped.
+class RequestQueue {
+ public:
+  // Returns false when the owner stopped before (or instead of) running the job.
+  bool run(std::function<void()> job);
+  // Runs every job queued so far, in arrival order; called by the owner only.
+  void drain();
+  // Cancels what is queued and refuses whatever comes later.
+  void stop();
+
+ private:
+  struct Job {
+    std::function<void()> apply;
+    std::promise<bool> done;
+  };
+  std::mutex mutex_;
+  std::deque<std::shared_ptr<Job>> jobs_;
+  bool stopped_ = false;
+};
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

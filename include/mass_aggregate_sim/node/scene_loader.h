@@ -1,0 +1,40 @@
+#pragma once
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "mass_aggregate_sim/engine/world.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+
+// Node parameters that, when set, win over what the scene says.
+struct SceneOverrides {
+  std::optional<double> rate;  // Hz: physics steps per second, dt = 1 / rate
+  std::optional<int> substeps;
+  std::optional<std::string> integrator;
+  std::optional<engine::Vec3> gravity;  // m/s^2
+  std::size_t max_particles = 20000;
+};
+
+struct LoadedScene {
+  std::string name;
+  std::string description;
+  double rate = 60.0;  // Hz
+  engine::World world;
+};
+
+// Builds a world from a scene tree (the value of ~scene on the parameter server; an empty or
+// missing tree is an empty scene). A bad scene is refused with the key and the reason, e.g.
+// "scene.particles[2].mass: must be > 0".
+//
+// Precedence: an override (node parameter) > the scene's own value > the default
+// (rate 60 Hz, 1 substep, semi_implicit_euler, gravity [0, 0, -9.81]).
+engine::Result<LoadedScene> loadScene(const XmlRpc::XmlRpcValue& scene,
+                                      const SceneOverrides& overrides);
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

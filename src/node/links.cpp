@@ -1,0 +1,130 @@
+#include "mass_aggregate_sim/node/links.h"
+
+#include <algorithm>
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::GeneratorId;
+using engine::ParticleId;
+using engine::Real;
+using engine::Result;
+using engine::Status;
+using engine::Vec3;
+
+template <typename Generator>
+bool containsId(const std::vector<Generator>& kind, const GeneratorId id) {
+  return std::any_of(kind.begin(), kind.end(), [id](const Generator& g) { return g.id == id; });
+}
+
+// A negative length asks for the distance the link has when it is made.
+Real lengthOrDistance(const Real requested, const Real distance) {
+  return requested < 0.0 ? distance : requested;
+}
+
+Vec3 positionOf(const engine::World& world, const ParticleId id) {
+  return world.particles().positions().col(*world.particles().find(id));
+}
+
+Result<GeneratorId> addAnchoredLink(engine::World& world, const ParticleId a,
+                                    const LinkRequest& r) {
+  if (!r.anchor.allFinite()) return Status::error("anchor is not finite");
+  const Real distance = (positionOf(world, a) - r.anchor).norm();
+  switch (r.type) {
+    case LinkType::kSpring:
+      return world.addAnchoredSpring(engine::AnchoredSpring{
+          a, r.anchor, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+    case LinkType::kBungee:
+      return world.addAnchoredBungee(engine::AnchoredBungee{
+          a, r.anchor, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+    case LinkType::kStiffSpring:
+      return world.addStiffSpring(engine::StiffSpring{a, r.anchor, r.stiffness, r.damping});
+    case LinkType::kCable:
+    case LinkType::kRod:
+      break;
+  }
+  return Status::error(std::string(linkTypeName(r.type)) +
+                       " links need the contact engine, which this build does not have");
+}
+
+Result<GeneratorId> addParticleLink(engine::World& world, const ParticleId a, const ParticleId b,
+                                    const LinkRequest& r) {
+  const Real distance = (positionOf(world, a) - positionOf(world, b)).norm();
+  switch (r.type) {
+    case LinkType::kSpring:
+      return world.addSpring(
+          engine::Spring{a, b, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+    case LinkType::kBungee:
+      return world.addBungee(
+          engine::Bungee{a, b, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+    case LinkType::kStiffSpring:
+      return Status::error("a stiff_spring links a particle to an anchor, not to particle b");
+    case LinkType::kCable:
+    case LinkType::kRod:
+      break;
+  }
+  return Status::error(std::string(linkTypeName(r.type)) +
+                       " links need the contact engine, which this build does not have");
+}
+
+}  // namespace
+
+Result<ParticleId> resolveParticle(const engine::World& world, const ParticleRef& ref) {
+  if (!ref.name.empty()) {
+    const auto id = world.particles().findByName(ref.name);
+    if (!id) return Status::error("no particle named '" + ref.name + "'");
+    return *id;
+  }
+  const ParticleId id = ParticleId::fromPacked(ref.id);
+  if (!world.particles().contains(id)) {
+    return Status::error("no particle with id " + std::to_string(ref.id) + " (" +
+                         world.particles().describeInvalid(id) + ")");
+  }
+  return id;
+}
+
+std::optional<LinkType> parseLinkType(const std::string& name) {
+  for (const LinkType type : {LinkType::kSpring, LinkType::kBungee, LinkType::kStiffSpring,
+                              LinkType::kCable, LinkType::kRod}) {
+    if (name == linkTypeName(type)) return type;
+  }
+  return std::nullopt;
+}
+
+const char* linkTypeName(const LinkType type) {
+  switch (type) {
+    case LinkType::kSpring:
+      return "spring";
+    case LinkType::kBungee:
+      return "bungee";
+    case LinkType::kStiffSpring:
+      return "stiff_spring";
+    case LinkType::kCable:
+      return "cable";
+    case LinkType::kRod:
+      return "rod";
+  }
+  return "unknown";
+}
+
+std::string linkTypeNames() { return "spring, bungee, stiff_spring, cable, rod"; }
+
+Result<GeneratorId> addLink(engine::World& world, const LinkRequest& request) {
+  const auto a = resolveParticle(world, request.a);
+  if (!a) return Status::error("a: " + a.message());
+  if (!request.b) return addAnchoredLink(world, *a, request);
+  const auto b = resolveParticle(world, *request.b);
+  if (!b) return Status::error("b: " + b.message());
+  return addParticleLink(world, *a, *b, request);
+}
+
+bool isLink(const engine::World& world, const GeneratorId id) {
+  const engine::ForceGenerators& g = world.generators();
+  return containsId(g.springs, id) || containsId(g.anchored_springs, id) ||
+         containsId(g.bungees, id) || containsId(g.anchored_bungees, id) ||
+         containsId(g.stiff_springs, id);
+}
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

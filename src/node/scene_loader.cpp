@@ -1,0 +1,370 @@
+#include "mass_aggregate_sim/node/scene_loader.h"
+
+#include <xmlrpcpp/XmlRpcException.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/integrator.h"
+#include "mass_aggregate_sim/node/links.h"
+#include "mass_aggregate_sim/node/xmlrpc_reader.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::ParticleSpec;
+using engine::Real;
+using engine::Vec3;
+using XmlRpc::XmlRpcValue;
+
+constexpr Real kDefaultRate = 60.0;
+const Vec3 kDefaultGravity(0.0, 0.0, -9.81);
+
+std::string indexed(const std::string& key, const int i) {
+  return key + "[" + std::to_string(i) + "]";
+}
+
+// The properties every particle source shares: mass (or fixed), radius, damping, velocity,
+// acceleration.
+ParticleSpec readParticleProperties(XmlRpcValue& s, const std::string& key) {
+  ParticleSpec spec;
+  const bool fixed = boolOr(s, key, "fixed", false);
+  const Real mass = realOr(s, key, "mass", 1.0);
+  if (!fixed && mass <= 0.0) throw ParamError(key + ".mass", "must be > 0 (or set fixed: true)");
+  spec.inverse_mass = fixed ? 0.0 : 1.0 / mass;
+  spec.radius = realOr(s, key, "radius", 0.1);
+  if (spec.radius < 0.0) throw ParamError(key + ".radius", "must be >= 0");
+  spec.damping = realOr(s, key, "damping", 1.0);
+  if (spec.damping < 0.0 || spec.damping > 1.0) {
+    throw ParamError(key + ".damping", "must be in [0, 1] (fraction of velocity kept per second)");
+  }
+  spec.velocity = fixed ? Vec3::Zero() : vec3Or(s, key, "velocity", Vec3::Zero());
+  spec.acceleration = vec3Or(s, key, "acceleration", Vec3::Zero());
+  return spec;
+}
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(const SceneOverrides& overrides) : overrides_(overrides) {}
+
+  LoadedScene build(XmlRpcValue& scene) {
+    LoadedScene loaded;
+    const std::string key = "scene";
+    if (scene.getType() == XmlRpcValue::TypeInvalid) {
+      loaded.world = engine::World(config(scene, key, loaded));
+      return loaded;
+    }
+    checkKeys(scene, key,
+              {"name", "description", "rate", "substeps", "integrator", "gravity", "particles",
+               "lines", "blocks", "links", "forces"});
+    loaded.name = stringOr(scene, key, "name", "");
+    loaded.description = stringOr(scene, key, "description", "");
+    world_ = engine::World(config(scene, key, loaded));
+    if (has(scene, "particles")) readParticles(scene["particles"], key + ".particles");
+    if (has(scene, "lines")) readLines(scene["lines"], key + ".lines");
+    if (has(scene, "blocks")) readBlocks(scene["blocks"], key + ".blocks");
+    if (has(scene, "links")) readLinks(scene["links"], key + ".links");
+    if (has(scene, "forces")) readForces(scene["forces"], key + ".forces");
+    loaded.world = world_;
+    return loaded;
+  }
+
+ private:
+  engine::WorldConfig config(XmlRpcValue& scene, const std::string& key, LoadedScene& loaded) {
+    engine::WorldConfig config;
+    loaded.rate = overrides_.rate ? *overrides_.rate : realOr(scene, key, "rate", kDefaultRate);
+    const std::string rate_key = overrides_.rate ? "~rate" : key + ".rate";
+    if (!(loaded.rate > 0.0) || loaded.rate > 100000.0) {
+      throw ParamError(rate_key, "must be in (0, 100000] steps per second");
+    }
+    config.dt = 1.0 / loaded.rate;
+    config.max_frame_time = std::max(config.max_frame_time, config.dt);
+    config.substeps = overrides_.substeps ? *overrides_.substeps : intOr(scene, key, "substeps", 1);
+    if (config.substeps < 1 || config.substeps > 1000) {
+      throw ParamError(overrides_.substeps ? "~substeps" : key + ".substeps",
+                       "must be in [1, 1000]");
+    }
+    const std::string integrator = overrides_.integrator
+                                       ? *overrides_.integrator
+                                       : stringOr(scene, key, "integrator", "semi_implicit_euler");
+    const auto parsed = engine::parseIntegrator(integrator);
+    if (!parsed) {
+      throw ParamError(
+          overrides_.integrator ? "~integrator" : key + ".integrator",
+          "unknown integrator '" + integrator + "' (known: " + engine::integratorNames() + ")");
+    }
+    config.integrator = *parsed;
+    config.gravity =
+        overrides_.gravity ? *overrides_.gravity : vec3Or(scene, key, "gravity", kDefaultGravity);
+    const engine::Status valid = engine::validateConfig(config);
+    if (!valid) throw ParamError(key, valid.message());
+    return config;
+  }
+
+  void add(const ParticleSpec& spec, const std::string& key) {
+    if (world_.particles().size() >= overrides_.max_particles) {
+      throw ParamError(key, "the scene has more than ~max_particles (" +
+                                std::to_string(overrides_.max_particles) + ") particles");
+    }
+    if (!spec.name.empty() && world_.particles().findByName(spec.name)) {
+      throw ParamError(key, "the particle name '" + spec.name + "' is used twice");
+    }
+    const auto added = world_.addParticle(spec);
+    if (!added) throw ParamError(key, added.message());
+  }
+
+  void readParticles(XmlRpcValue& list, const std::string& key) {
+    requireArray(list, key);
+    for (int i = 0; i < list.size(); ++i) {
+      const std::string k = indexed(key, i);
+      XmlRpcValue& p = list[i];
+      checkKeys(
+          p, k,
+          {"name", "position", "velocity", "acceleration", "mass", "fixed", "radius", "damping"});
+      ParticleSpec spec = readParticleProperties(p, k);
+      spec.name = stringOr(p, k, "name", "");
+      if (!has(p, "position")) throw ParamError(k + ".position", "is required");
+      spec.position = readVec3(p["position"], k + ".position");
+      add(spec, k);
+    }
+  }
+
+  // Evenly spaced particles from start to end, named <name>_0 ... <name>_<count-1>, optionally
+  // linked one to the next.
+  void readLines(XmlRpcValue& list, const std::string& key) {
+    requireArray(list, key);
+    for (int i = 0; i < list.size(); ++i) {
+      const std::string k = indexed(key, i);
+      XmlRpcValue& line = list[i];
+      checkKeys(line, k,
+                {"name", "start", "end", "count", "velocity", "acceleration", "mass", "fixed",
+                 "radius", "damping", "fixed_indices", "link"});
+      const std::string name = stringOr(line, k, "name", "");
+      if (name.empty()) throw ParamError(k + ".name", "is required (particles are <name>_<i>)");
+      if (!has(line, "start") || !has(line, "end")) {
+        throw ParamError(k, "start and end are required");
+      }
+      const Vec3 start = readVec3(line["start"], k + ".start");
+      const Vec3 end = readVec3(line["end"], k + ".end");
+      const int count = intOr(line, k, "count", 2);
+      if (count < 2) throw ParamError(k + ".count", "must be at least 2");
+      ParticleSpec spec = readParticleProperties(line, k);
+      std::vector<bool> fixed(static_cast<std::size_t>(count), spec.inverse_mass == 0.0);
+      if (has(line, "fixed_indices")) {
+        XmlRpcValue& indices = line["fixed_indices"];
+        const std::string ik = k + ".fixed_indices";
+        requireArray(indices, ik);
+        for (int j = 0; j < indices.size(); ++j) {
+          int index = readInt(indices[j], indexed(ik, j));
+          if (index < 0) index += count;  // -1 is the last particle
+          if (index < 0 || index >= count) throw ParamError(indexed(ik, j), "out of range");
+          fixed[static_cast<std::size_t>(index)] = true;
+        }
+      }
+      const Real inverse_mass = spec.inverse_mass;
+      const Vec3 velocity = spec.velocity;
+      for (int j = 0; j < count; ++j) {
+        spec.name = name + "_" + std::to_string(j);
+        spec.position = start + (end - start) * (static_cast<Real>(j) / (count - 1));
+        const bool is_fixed = fixed[static_cast<std::size_t>(j)];
+        spec.inverse_mass = is_fixed ? 0.0 : inverse_mass;
+        spec.velocity = is_fixed ? Vec3::Zero() : velocity;
+        add(spec, k);
+      }
+      if (has(line, "link")) {
+        XmlRpcValue& link = line["link"];
+        for (int j = 0; j + 1 < count; ++j) {
+          LinkRequest request = readLinkProperties(link, k + ".link");
+          request.a.name = name + "_" + std::to_string(j);
+          request.b = ParticleRef{0, name + "_" + std::to_string(j + 1)};
+          addLinkOrThrow(request, k + ".link");
+        }
+      }
+    }
+  }
+
+  // A block of count[0] x count[1] x count[2] particles from origin, spacing apart, each moved
+  // by a reproducible random offset of up to jitter per axis.
+  void readBlocks(XmlRpcValue& list, const std::string& key) {
+    requireArray(list, key);
+    for (int i = 0; i < list.size(); ++i) {
+      const std::string k = indexed(key, i);
+      XmlRpcValue& block = list[i];
+      checkKeys(block, k,
+                {"name", "origin", "count", "spacing", "jitter", "seed", "velocity", "acceleration",
+                 "mass", "fixed", "radius", "damping"});
+      const std::string name = stringOr(block, k, "name", "");
+      const Vec3 origin = vec3Or(block, k, "origin", Vec3::Zero());
+      if (!has(block, "count")) throw ParamError(k + ".count", "is required ([nx, ny, nz])");
+      XmlRpcValue& count_value = block["count"];
+      requireArray(count_value, k + ".count");
+      if (count_value.size() != 3) throw ParamError(k + ".count", "expected [nx, ny, nz]");
+      int count[3];
+      long total = 1;
+      for (int axis = 0; axis < 3; ++axis) {
+        count[axis] = readInt(count_value[axis], indexed(k + ".count", axis));
+        if (count[axis] < 1) throw ParamError(indexed(k + ".count", axis), "must be >= 1");
+        total *= count[axis];
+        if (total > static_cast<long>(overrides_.max_particles)) {
+          throw ParamError(k + ".count", "more than ~max_particles (" +
+                                             std::to_string(overrides_.max_particles) + ")");
+        }
+      }
+      Vec3 spacing;
+      if (has(block, "spacing") && block["spacing"].getType() == XmlRpcValue::TypeArray) {
+        spacing = readVec3(block["spacing"], k + ".spacing");
+      } else {
+        spacing.setConstant(realOr(block, k, "spacing", 0.25));
+      }
+      if ((spacing.array() <= 0.0).any()) throw ParamError(k + ".spacing", "must be > 0");
+      const Real jitter = realOr(block, k, "jitter", 0.0);
+      if (jitter < 0.0) throw ParamError(k + ".jitter", "must be >= 0");
+      std::mt19937_64 random(static_cast<std::uint64_t>(intOr(block, k, "seed", 1)));
+      // A uniform number in [-1, 1) from the top 53 bits: the same on every platform.
+      const auto uniform = [&random]() {
+        return static_cast<Real>(random() >> 11) * 0x1.0p-52 - 1.0;
+      };
+      ParticleSpec spec = readParticleProperties(block, k);
+      int index = 0;
+      for (int z = 0; z < count[2]; ++z) {
+        for (int y = 0; y < count[1]; ++y) {
+          for (int x = 0; x < count[0]; ++x) {
+            spec.position = origin + Vec3(x, y, z).cwiseProduct(spacing);
+            if (jitter > 0.0) {
+              const Real dx = uniform();
+              const Real dy = uniform();
+              const Real dz = uniform();
+              spec.position += jitter * Vec3(dx, dy, dz);
+            }
+            spec.name = name.empty() ? "" : name + "_" + std::to_string(index);
+            add(spec, k);
+            ++index;
+          }
+        }
+      }
+    }
+  }
+
+  LinkRequest readLinkProperties(XmlRpcValue& s, const std::string& k) {
+    checkKeys(s, k,
+              {"type", "a", "b", "anchor", "stiffness", "damping", "rest_length", "max_length",
+               "length", "restitution"});
+    LinkRequest request;
+    const std::string type = stringOr(s, k, "type", "");
+    const auto parsed = parseLinkType(type);
+    if (!parsed) {
+      throw ParamError(k + ".type",
+                       "unknown link type '" + type + "' (known: " + linkTypeNames() + ")");
+    }
+    request.type = *parsed;
+    request.stiffness = realOr(s, k, "stiffness", 0.0);
+    request.damping = realOr(s, k, "damping", 0.0);
+    request.rest_length = realOr(s, k, "rest_length", -1.0);
+    request.max_length = realOr(s, k, "max_length", -1.0);
+    request.length = realOr(s, k, "length", -1.0);
+    request.restitution = realOr(s, k, "restitution", 0.0);
+    return request;
+  }
+
+  void addLinkOrThrow(const LinkRequest& request, const std::string& key) {
+    const auto added = addLink(world_, request);
+    if (!added) throw ParamError(key, added.message());
+  }
+
+  void readLinks(XmlRpcValue& list, const std::string& key) {
+    requireArray(list, key);
+    for (int i = 0; i < list.size(); ++i) {
+      const std::string k = indexed(key, i);
+      XmlRpcValue& link = list[i];
+      LinkRequest request = readLinkProperties(link, k);
+      request.a.name = stringOr(link, k, "a", "");
+      if (request.a.name.empty()) throw ParamError(k + ".a", "is required (a particle name)");
+      const bool to_b = has(link, "b");
+      if (to_b == has(link, "anchor")) throw ParamError(k, "give exactly one of b and anchor");
+      if (to_b) {
+        request.b = ParticleRef{0, readString(link["b"], k + ".b")};
+      } else {
+        request.anchor = readVec3(link["anchor"], k + ".anchor");
+      }
+      addLinkOrThrow(request, k);
+    }
+  }
+
+  // The particles a force applies to: `all: true`, or `particles: [names]`.
+  std::vector<engine::ParticleId> readTargets(XmlRpcValue& s, const std::string& k) {
+    std::vector<engine::ParticleId> ids;
+    const bool all = boolOr(s, k, "all", false);
+    if (all == has(s, "particles")) throw ParamError(k, "give exactly one of all and particles");
+    if (all) {
+      for (std::size_t i = 0; i < world_.particles().size(); ++i) {
+        if (world_.particles().inverseMasses()[i] > 0.0) ids.push_back(world_.particles().idAt(i));
+      }
+      return ids;
+    }
+    XmlRpcValue& names = s["particles"];
+    requireArray(names, k + ".particles");
+    for (int j = 0; j < names.size(); ++j) {
+      const std::string name = readString(names[j], indexed(k + ".particles", j));
+      const auto id = world_.particles().findByName(name);
+      if (!id) throw ParamError(indexed(k + ".particles", j), "no particle named '" + name + "'");
+      ids.push_back(*id);
+    }
+    return ids;
+  }
+
+  void readForces(XmlRpcValue& list, const std::string& key) {
+    requireArray(list, key);
+    for (int i = 0; i < list.size(); ++i) {
+      const std::string k = indexed(key, i);
+      XmlRpcValue& force = list[i];
+      const std::string type = stringOr(force, k, "type", "");
+      if (type == "drag") {
+        checkKeys(force, k, {"type", "all", "particles", "k1", "k2"});
+        const Real k1 = realOr(force, k, "k1", 0.0);
+        const Real k2 = realOr(force, k, "k2", 0.0);
+        for (const auto id : readTargets(force, k)) {
+          const auto added = world_.addDrag(engine::Drag{id, k1, k2});
+          if (!added) throw ParamError(k, added.message());
+        }
+      } else if (type == "buoyancy") {
+        checkKeys(force, k,
+                  {"type", "all", "particles", "max_depth", "volume", "liquid_density",
+                   "surface_height", "up"});
+        engine::Buoyancy buoyancy;
+        buoyancy.max_depth = realOr(force, k, "max_depth", buoyancy.max_depth);
+        buoyancy.volume = realOr(force, k, "volume", buoyancy.volume);
+        buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
+        buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
+        buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
+        for (const auto id : readTargets(force, k)) {
+          buoyancy.particle = id;
+          const auto added = world_.addBuoyancy(buoyancy);
+          if (!added) throw ParamError(k, added.message());
+        }
+      } else {
+        throw ParamError(k + ".type", "unknown force '" + type + "' (known: drag, buoyancy)");
+      }
+    }
+  }
+
+  SceneOverrides overrides_;
+  engine::World world_;
+};
+
+}  // namespace
+
+engine::Result<LoadedScene> loadScene(const XmlRpcValue& scene, const SceneOverrides& overrides) {
+  XmlRpcValue copy = scene;
+  try {
+    return SceneBuilder(overrides).build(copy);
+  } catch (const ParamError& error) {
+    return engine::Status::error(error.what());
+  } catch (const XmlRpc::XmlRpcException& error) {
+    return engine::Status::error("scene: " + error.getMessage());
+  }
+}
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

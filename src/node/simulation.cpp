@@ -1,0 +1,167 @@
+#include "mass_aggregate_sim/node/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::GeneratorId;
+using engine::ParticleId;
+using engine::Real;
+using engine::Result;
+using engine::Status;
+using engine::Vec3;
+
+}  // namespace
+
+Simulation::Simulation(const engine::World& scene, const SimulationLimits& limits)
+    : scene_(scene), world_(scene), limits_(limits) {}
+
+Result<ParticleId> Simulation::resolve(const ParticleRef& ref) const {
+  return resolveParticle(world_, ref);
+}
+
+Result<std::vector<ParticleId>> Simulation::spawn(const std::vector<engine::ParticleSpec>& specs) {
+  if (specs.empty()) return Status::error("no particles to spawn");
+  const std::size_t now = world_.particles().size();
+  if (specs.size() > limits_.max_particles || now + specs.size() > limits_.max_particles) {
+    return Status::error("spawning " + std::to_string(specs.size()) + " particles would make " +
+                         std::to_string(now + specs.size()) + ", over ~max_particles (" +
+                         std::to_string(limits_.max_particles) + ")");
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const std::string where = "particles[" + std::to_string(i) + "]: ";
+    const Status valid = engine::validateSpec(specs[i]);
+    if (!valid) return Status::error(where + valid.message());
+    const std::string& name = specs[i].name;
+    if (name.empty()) continue;
+    if (world_.particles().findByName(name) || !names.insert(name).second) {
+      return Status::error(where + "the name '" + name + "' is already taken");
+    }
+  }
+  std::vector<ParticleId> ids;
+  ids.reserve(specs.size());
+  for (const auto& spec : specs) ids.push_back(*world_.addParticle(spec));
+  return ids;
+}
+
+Result<std::vector<ParticleId>> Simulation::remove(const std::vector<ParticleRef>& refs) {
+  if (refs.empty()) return Status::error("no particles to remove");
+  std::vector<ParticleId> ids;
+  std::set<ParticleId> seen;
+  for (const auto& ref : refs) {
+    const auto id = resolve(ref);
+    if (!id) return id.status();
+    if (!seen.insert(*id).second) {
+      return Status::error("particle " + std::to_string(id.value().packed()) + " is named twice");
+    }
+    ids.push_back(*id);
+  }
+  for (const ParticleId id : ids) {
+    world_.removeParticle(id);
+    sustained_.erase(std::remove_if(sustained_.begin(), sustained_.end(),
+                                    [id](const SustainedForce& f) { return f.particle == id; }),
+                     sustained_.end());
+  }
+  return ids;
+}
+
+Status Simulation::setState(const ParticleRef& ref, const std::optional<Vec3>& position,
+                            const std::optional<Vec3>& velocity) {
+  if (!position && !velocity) return Status::error("neither position nor velocity to set");
+  const auto id = resolve(ref);
+  if (!id) return id.status();
+  if (position && !position->allFinite()) return Status::error("position is not finite");
+  if (velocity && !velocity->allFinite()) return Status::error("velocity is not finite");
+  const auto dense = *world_.particles().find(*id);
+  if (velocity && world_.particles().inverseMasses()[dense] <= 0.0 && !velocity->isZero(0.0)) {
+    return Status::error("particle " + std::to_string(id.value().packed()) +
+                         " is immovable: its velocity stays zero");
+  }
+  if (position) world_.setPosition(*id, *position);
+  if (velocity) world_.setVelocity(*id, *velocity);
+  return Status::ok();
+}
+
+Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
+  const auto id = resolve(request.particle);
+  if (!id) return id.status();
+  if (request.mode == ForceMode::kClear) {
+    const std::size_t before = sustained_.size();
+    sustained_.erase(std::remove_if(sustained_.begin(), sustained_.end(),
+                                    [&](const SustainedForce& f) { return f.particle == *id; }),
+                     sustained_.end());
+    if (sustained_.size() == before) {
+      return Status::error("particle " + std::to_string(id.value().packed()) +
+                           " has no sustained force to clear");
+    }
+    return std::uint64_t{0};
+  }
+  if (!request.force.allFinite()) return Status::error("force is not finite");
+  if (request.mode == ForceMode::kOneStep) {
+    world_.addForce(*id, request.force);
+    return std::uint64_t{1};
+  }
+  std::int64_t steps = -1;
+  if (request.mode == ForceMode::kDuration) {
+    if (!std::isfinite(request.duration) || request.duration <= 0.0) {
+      return Status::error("duration must be finite and > 0");
+    }
+    const Real count = std::round(request.duration / world_.config().dt);
+    if (count > static_cast<Real>(limits_.max_steps_per_request) * 100.0) {
+      return Status::error("duration is too long");
+    }
+    steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(count));
+  }
+  sustained_.push_back(SustainedForce{*id, request.force, steps});
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0));
+}
+
+Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impulse) {
+  const auto id = resolve(ref);
+  if (!id) return id.status();
+  const Status applied = world_.applyImpulse(*id, impulse);
+  if (!applied) return applied;
+  return Vec3(world_.particles().velocities().col(*world_.particles().find(*id)));
+}
+
+Result<GeneratorId> Simulation::addLink(const LinkRequest& request) {
+  return node::addLink(world_, request);
+}
+
+Status Simulation::removeLink(const GeneratorId id) {
+  if (!isLink(world_, id)) return Status::error("no link with id " + std::to_string(id));
+  return world_.removeGenerator(id);
+}
+
+void Simulation::step() {
+  for (auto& sustained : sustained_) {
+    world_.addForce(sustained.particle, sustained.force);
+    if (sustained.steps_left > 0) --sustained.steps_left;
+  }
+  sustained_.erase(std::remove_if(sustained_.begin(), sustained_.end(),
+                                  [](const SustainedForce& f) { return f.steps_left == 0; }),
+                   sustained_.end());
+  world_.step();
+}
+
+Status Simulation::stepMany(const std::uint32_t n) {
+  if (n == 0) return Status::error("steps must be at least 1");
+  if (n > limits_.max_steps_per_request) {
+    return Status::error("steps must be at most " + std::to_string(limits_.max_steps_per_request));
+  }
+  for (std::uint32_t i = 0; i < n; ++i) step();
+  return Status::ok();
+}
+
+void Simulation::reset() {
+  world_ = scene_;
+  sustained_.clear();
+}
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,253 @@
+#include "mass_aggregate_sim/node/scene_loader.h"
+
+#include <dirent.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "yaml_to_xmlrpc.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::Vec3;
+
+engine::Result<LoadedScene> load(const std::string& yaml, const SceneOverrides& overrides = {}) {
+  return loadScene(test::yamlToXmlRpc(yaml), overrides);
+}
+
+// The error must name the key and say why.
+void expectError(const std::string& yaml, const std::string& key, const std::string& reason,
+                 const SceneOverrides& overrides = {}) {
+  const auto loaded = load(yaml, overrides);
+  ASSERT_FALSE(loaded.isOk()) << yaml;
+  EXPECT_EQ(loaded.message().rfind(key + ": ", 0), 0u) << loaded.message();
+  EXPECT_NE(loaded.message().find(reason), std::string::npos) << loaded.message();
+}
+
+TEST(SceneLoaderTest, MissingSceneIsEmptyWithDefaults) {
+  const auto loaded = loadScene(XmlRpc::XmlRpcValue(), SceneOverrides{});
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  EXPECT_EQ(loaded.value().world.particles().size(), 0u);
+  EXPECT_DOUBLE_EQ(loaded.value().rate, 60.0);
+  EXPECT_EQ(loaded.value().world.config().gravity, Vec3(0.0, 0.0, -9.81));
+  EXPECT_EQ(loaded.value().world.config().integrator, engine::Integrator::kSemiImplicitEuler);
+}
+
+TEST(SceneLoaderTest, ParticleTakesEveryProperty) {
+  const auto loaded = load(R"(
+name: one
+rate: 100
+substeps: 4
+integrator: rk4
+gravity: [0, 0, -20]
+particles:
+  - {name: ball, position: [1, 2, 3], velocity: [4, 5, 6], acceleration: [0, 1, 0],
+     mass: 200, radius: 0.5, damping: 0.99}
+  - {position: [0, 0, 0], fixed: true}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const engine::World& world = loaded.value().world;
+  EXPECT_EQ(loaded.value().name, "one");
+  EXPECT_DOUBLE_EQ(loaded.value().rate, 100.0);
+  EXPECT_DOUBLE_EQ(world.config().dt, 0.01);
+  EXPECT_EQ(world.config().substeps, 4);
+  EXPECT_EQ(world.config().integrator, engine::Integrator::kRk4);
+  EXPECT_EQ(world.config().gravity, Vec3(0, 0, -20));
+  ASSERT_EQ(world.particles().size(), 2u);
+  const auto ball = world.particles().findByName("ball");
+  ASSERT_TRUE(ball.has_value());
+  const std::size_t i = *world.particles().find(*ball);
+  EXPECT_EQ(Vec3(world.particles().positions().col(i)), Vec3(1, 2, 3));
+  EXPECT_EQ(Vec3(world.particles().velocities().col(i)), Vec3(4, 5, 6));
+  EXPECT_EQ(Vec3(world.particles().accelerations().col(i)), Vec3(0, 1, 0));
+  EXPECT_DOUBLE_EQ(world.particles().mass(i), 200.0);
+  EXPECT_DOUBLE_EQ(world.particles().radii()[i], 0.5);
+  EXPECT_DOUBLE_EQ(world.particles().dampings()[i], 0.99);
+  EXPECT_EQ(world.particles().inverseMasses()[1 - i], 0.0);
+}
+
+TEST(SceneLoaderTest, OverridesWinOverTheScene) {
+  SceneOverrides overrides;
+  overrides.rate = 250.0;
+  overrides.substeps = 2;
+  overrides.integrator = "velocity_verlet";
+  overrides.gravity = Vec3(0, -1, 0);
+  const auto loaded =
+      load("{rate: 100, substeps: 4, integrator: rk4, gravity: [0, 0, -20]}", overrides);
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  EXPECT_DOUBLE_EQ(loaded.value().rate, 250.0);
+  EXPECT_DOUBLE_EQ(loaded.value().world.config().dt, 1.0 / 250.0);
+  EXPECT_EQ(loaded.value().world.config().substeps, 2);
+  EXPECT_EQ(loaded.value().world.config().integrator, engine::Integrator::kVelocityVerlet);
+  EXPECT_EQ(loaded.value().world.config().gravity, Vec3(0, -1, 0));
+}
+
+TEST(SceneLoaderTest, LineIsEvenlySpacedNamedFixedAndLinked) {
+  const auto loaded = load(R"(
+lines:
+  - name: chain
+    start: [0, 0, 3]
+    end: [3, 0, 3]
+    count: 4
+    mass: 0.5
+    fixed_indices: [0, -1]
+    link: {type: spring, stiffness: 150, damping: 0.5}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const engine::World& world = loaded.value().world;
+  ASSERT_EQ(world.particles().size(), 4u);
+  for (int j = 0; j < 4; ++j) {
+    const auto id = world.particles().findByName("chain_" + std::to_string(j));
+    ASSERT_TRUE(id.has_value()) << j;
+    const std::size_t i = *world.particles().find(*id);
+    EXPECT_TRUE(Vec3(world.particles().positions().col(i)).isApprox(Vec3(j, 0, 3))) << j;
+    EXPECT_EQ(world.particles().inverseMasses()[i], (j == 0 || j == 3) ? 0.0 : 2.0) << j;
+  }
+  ASSERT_EQ(world.generators().springs.size(), 3u);
+  // rest_length defaults to the distance at load time: the chain starts unstretched.
+  for (const auto& spring : world.generators().springs) {
+    EXPECT_DOUBLE_EQ(spring.rest_length, 1.0);
+    EXPECT_DOUBLE_EQ(spring.stiffness, 150.0);
+    EXPECT_DOUBLE_EQ(spring.damping, 0.5);
+  }
+}
+
+TEST(SceneLoaderTest, BlockHasCountTimesParticlesAndReproducibleJitter) {
+  const std::string yaml = R"(
+blocks:
+  - {origin: [0, 0, 1], count: [3, 4, 5], spacing: 0.5, jitter: 0.01, seed: 7, radius: 0.2}
+)";
+  const auto first = load(yaml);
+  const auto second = load(yaml);
+  ASSERT_TRUE(first.isOk()) << first.message();
+  ASSERT_EQ(first.value().world.particles().size(), 60u);
+  EXPECT_EQ(first.value().world.stateHash(), second.value().world.stateHash());
+  const auto x = first.value().world.particles().positions();
+  for (std::size_t i = 0; i < 60; ++i) {
+    const Vec3 nominal(0.5 * (i % 3), 0.5 * ((i / 3) % 4), 1.0 + 0.5 * (i / 12));
+    const Vec3 offset = Vec3(x.col(i)) - nominal;
+    EXPECT_LE(offset.cwiseAbs().maxCoeff(), 0.01) << i;
+  }
+  EXPECT_NE(Vec3(x.col(0)), Vec3(0, 0, 1));  // the jitter did move it
+}
+
+TEST(SceneLoaderTest, LinksToParticlesAndAnchors) {
+  const auto loaded = load(R"(
+particles:
+  - {name: a, position: [0, 0, 0]}
+  - {name: b, position: [0, 0, 2]}
+links:
+  - {type: bungee, a: a, b: b, stiffness: 10, rest_length: 1}
+  - {type: spring, a: a, anchor: [0, 0, 5], stiffness: 3}
+  - {type: stiff_spring, a: b, anchor: [0, 0, 3], stiffness: 1.0e6, damping: 2}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const auto& g = loaded.value().world.generators();
+  ASSERT_EQ(g.bungees.size(), 1u);
+  EXPECT_DOUBLE_EQ(g.bungees[0].rest_length, 1.0);
+  ASSERT_EQ(g.anchored_springs.size(), 1u);
+  EXPECT_DOUBLE_EQ(g.anchored_springs[0].rest_length, 5.0);
+  EXPECT_EQ(g.anchored_springs[0].anchor, Vec3(0, 0, 5));
+  ASSERT_EQ(g.stiff_springs.size(), 1u);
+  EXPECT_DOUBLE_EQ(g.stiff_springs[0].stiffness, 1.0e6);
+}
+
+TEST(SceneLoaderTest, ForcesApplyToAllMovableOrNamedParticles) {
+  const auto loaded = load(R"(
+particles:
+  - {name: a, position: [0, 0, 0]}
+  - {name: b, position: [1, 0, 0]}
+  - {name: wall, position: [2, 0, 0], fixed: true}
+forces:
+  - {type: drag, all: true, k1: 0.1, k2: 0.01}
+  - {type: buoyancy, particles: [b], volume: 0.002, max_depth: 0.1}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const auto& g = loaded.value().world.generators();
+  EXPECT_EQ(g.drags.size(), 2u);
+  ASSERT_EQ(g.buoyancies.size(), 1u);
+  EXPECT_EQ(g.buoyancies[0].particle, *loaded.value().world.particles().findByName("b"));
+}
+
+TEST(SceneLoaderTest, BadScenesNameTheKeyAndTheReason) {
+  expectError("{particles: [{position: [0, 0, 0], mass: 0}]}", "scene.particles[0].mass",
+              "must be > 0");
+  expectError("{particles: [{position: [0, 0, 0], mass: -1}]}", "scene.particles[0].mass",
+              "must be > 0");
+  expectError("{particles: [{position: [0, .nan, 0]}]}", "scene.particles[0].position[1]",
+              "finite");
+  expectError("{particles: [{position: [0, 0]}]}", "scene.particles[0].position", "[x, y, z]");
+  expectError("{particles: [{position: [0, 0, 0], masss: 1}]}", "scene.particles[0].masss",
+              "unknown key");
+  expectError("{particles: [{mass: 1}]}", "scene.particles[0].position", "is required");
+  expectError("{particles: [{position: [0, 0, 0], damping: 1.5}]}", "scene.particles[0].damping",
+              "[0, 1]");
+  expectError("{gravity: [0, 0, .inf]}", "scene.gravity[2]", "finite");
+  expectError("{integrator: leapfrog}", "scene.integrator", "unknown integrator 'leapfrog'");
+  expectError("{rate: 0}", "scene.rate", "must be in (0, 100000]");
+  expectError("{substeps: 0}", "scene.substeps", "[1, 1000]");
+  expectError("{particles: {position: [0, 0, 0]}}", "scene.particles", "expected a list");
+  expectError("{colour: red}", "scene.colour", "unknown key");
+  expectError("{particles: [{name: a, position: [0, 0, 0]}, {name: a, position: [1, 0, 0]}]}",
+              "scene.particles[1]", "used twice");
+  expectError("{particles: [{name: a, position: [0, 0, 0]}], links: [{type: spring, a: a, b: c}]}",
+              "scene.links[0]", "no particle named 'c'");
+  expectError("{particles: [{name: a, position: [0, 0, 0]}], links: [{type: rope, a: a, b: a}]}",
+              "scene.links[0].type", "unknown link type 'rope'");
+  expectError("{particles: [{name: a, position: [0, 0, 0]}], links: [{type: spring, a: a}]}",
+              "scene.links[0]", "exactly one of b and anchor");
+  expectError("{particles: [{name: a, position: [0, 0, 0]}], links: [{type: spring, a: a, b: a}]}",
+              "scene.links[0]", "different particles");
+  expectError("{lines: [{name: l, start: [0, 0, 0], end: [1, 0, 0], count: 1}]}",
+              "scene.lines[0].count", "at least 2");
+  expectError("{lines: [{name: l, start: [0, 0, 0], end: [1, 0, 0], fixed_indices: [5]}]}",
+              "scene.lines[0].fixed_indices[0]", "out of range");
+  expectError("{blocks: [{count: [2, 0, 2]}]}", "scene.blocks[0].count[1]", ">= 1");
+  expectError("{forces: [{type: wind, all: true}]}", "scene.forces[0].type", "unknown force");
+  expectError("{forces: [{type: drag, particles: [nobody]}]}", "scene.forces[0].particles[0]",
+              "no particle named 'nobody'");
+  SceneOverrides small;
+  small.max_particles = 10;
+  expectError("{blocks: [{count: [3, 3, 3]}]}", "scene.blocks[0].count", "~max_particles", small);
+  SceneOverrides bad_rate;
+  bad_rate.rate = -5.0;
+  expectError("{}", "~rate", "must be in (0, 100000]", bad_rate);
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every scene shipped in config/scenes loads.
+TEST(SceneLoaderTest, ShippedScenesLoad) {
+  const std::string here = __FILE__;
+  const std::string dir = here.substr(0, here.rfind("/test/node/")) + "/config/scenes";
+  DIR* handle = opendir(dir.c_str());
+  ASSERT_NE(handle, nullptr) << dir;
+  std::vector<std::string> files;
+  while (const dirent* entry = readdir(handle)) {
+    const std::string name = entry->d_name;
+    if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") files.push_back(name);
+  }
+  closedir(handle);
+  EXPECT_GE(files.size(), 5u);
+  for (const auto& file : files) {
+    const auto loaded = load(readFile(dir + "/" + file));
+    EXPECT_TRUE(loaded.isOk()) << file << ": " << loaded.message();
+    if (loaded.isOk()) {
+      EXPECT_GT(loaded.value().world.particles().size(), 0u) << file;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Records a driven node with rosbag, replays the bag into a second node with
+scripts/replay_commands.py, and expects the same final state hash (rostest: test/replay.test)."""
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import Vector3
+
+from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
+from sim_client import SimClient, spec
+
+
+def vec(x, y, z):
+    v = Vector3()
+    v.x, v.y, v.z = x, y, z
+    return v
+
+
+class ReplayTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('replay_test')
+        cls.sim = SimClient('/mass_aggregate_sim')
+        SimClient('/replay_target')  # waits for its services
+        cls.dir = tempfile.mkdtemp(prefix='mas_replay_')
+        cls.script = os.path.join(rospkg.RosPack().get_path('mass_aggregate_sim'), 'scripts',
+                                  'replay_commands.py')
+
+    def record(self, bag):
+        recorder = subprocess.Popen(
+            ['rosbag', 'record', '-O', bag, '/mass_aggregate_sim/commands',
+             '/mass_aggregate_sim/stats', '__name:=replay_test_record'],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        # Wait until the recorder has subscribed to the commands topic.
+        deadline = time.time() + 20.0
+        while time.time() < deadline:
+            subscriptions = rospy.get_master().getSystemState()[2][1]
+            subscribers = [nodes for topic, nodes in subscriptions
+                           if topic == '/mass_aggregate_sim/commands']
+            if subscribers and any('replay_test_record' in n for n in subscribers[0]):
+                break
+            time.sleep(0.2)
+        time.sleep(0.5)
+        return recorder
+
+    def stop(self, recorder, bag):
+        recorder.send_signal(signal.SIGINT)
+        recorder.wait(timeout=20.0)
+        deadline = time.time() + 10.0
+        while not os.path.exists(bag) and time.time() < deadline:
+            time.sleep(0.1)
+        self.assertTrue(os.path.exists(bag), 'rosbag wrote no ' + bag)
+
+    def drive(self):
+        """Requests while running (applied at whatever step they land on) and while paused."""
+        sim = self.sim
+        self.assertTrue(sim.pause(False).success)
+        time.sleep(0.3)
+        spawned = sim.spawn([spec('ball', (0.5, 0.0, 4.0), (1.0, 0.0, 0.0), mass=0.7),
+                             spec('', (2.0, 0.0, 4.0), mass=1.3)])
+        self.assertTrue(spawned.success, spawned.message)
+        time.sleep(0.2)
+        self.assertTrue(sim.apply_impulse(0, 'spring_9', '', vec(0.0, 1.0, 2.0)).success)
+        self.assertTrue(sim.apply_force(spawned.ids[1], '', '', vec(0.0, 0.0, 30.0),
+                                        ApplyForceRequest.DURATION, 0.2).success)
+        link = sim.add_link(AddLinkRequest(type='spring', a_name='ball', b=spawned.ids[1],
+                                           stiffness=40.0, rest_length=-1.0))
+        self.assertTrue(link.success, link.message)
+        time.sleep(0.3)
+        self.assertTrue(sim.pause(True).success)
+        self.assertTrue(sim.step(17).success)
+        self.assertTrue(sim.set_state(SetStateRequest(name='ball', set_velocity=True,
+                                                      velocity=vec(0.0, 0.0, 3.0))).success)
+        self.assertTrue(sim.step(5).success)
+        self.assertTrue(sim.remove([], ['bungee_9']).success)
+        self.assertTrue(sim.pause(False).success)
+        time.sleep(0.3)
+        self.assertTrue(sim.apply_force(0, 'ball', '', vec(5.0, 0.0, 0.0),
+                                        ApplyForceRequest.ONE_STEP, 0.0).success)
+        self.assertTrue(sim.remove_link(link.link_id).success)
+        time.sleep(0.2)
+        self.assertTrue(sim.pause(True).success)
+        # Let a few stats messages (with every command counted) reach the bag.
+        final = sim.stats()
+        sim.stats()
+        return final
+
+    def replay(self, bag):
+        env = dict(os.environ)
+        env['PATH'] = '/usr/bin:' + env.get('PATH', '')
+        return subprocess.run(['/usr/bin/python3', self.script, bag, '--target', '/replay_target'],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              timeout=90, env=env)
+
+    def test_recorded_bag_replays_to_the_same_hash(self):
+        bag = os.path.join(self.dir, 'drive.bag')
+        recorder = self.record(bag)
+        final = self.drive()
+        self.stop(recorder, bag)
+        self.assertGreater(final.commands_applied, 10)
+        result = self.replay(bag)
+        self.assertEqual(result.returncode, 0, result.stdout)
+        self.assertIn('match', result.stdout)
+        self.assertIn(str(final.state_hash), result.stdout)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('mass_aggregate_sim', 'replay', ReplayTest, sys.argv)
