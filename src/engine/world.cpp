@@ -47,7 +47,8 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config)
+    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -312,7 +313,11 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
     for (std::size_t i = 0; i < n; ++i) out.col(i) = mobility[i] * (g + own_acceleration.col(i));
     return;
   }
-  out = particles_.forces();
+  if (has_external_force_) {
+    out = particles_.forces();
+  } else {
+    out.setZero();
+  }
   accumulateGeneratorForces(generators_, particles_, x, v, g.norm(), h, out);
   // a = F/m + g + a_own, zero for immovable particles
   for (std::size_t i = 0; i < n; ++i) {
@@ -375,12 +380,14 @@ void World::substep(const Real h) {
 void World::detectDivergence() {
   const auto x = particles_.positions();
   const auto v = particles_.velocities();
-  if (x.allFinite() && v.allFinite()) return;
+  // 0 * value is 0 for every finite value and NaN for Inf or NaN: one vectorised pass.
+  if ((x.array() * 0.0).sum() + (v.array() * 0.0).sum() == 0.0) return;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {
-      last_divergence_ = DivergenceEvent{step_count_, time(), particles_.idAt(i),
-                                         bad_x ? "position is not finite" : "velocity is not finite"};
+      last_divergence_ =
+          DivergenceEvent{step_count_, time(), particles_.idAt(i),
+                          bad_x ? "position is not finite" : "velocity is not finite"};
       ++divergence_count_;
       return;
     }
