@@ -95,6 +95,15 @@ void BM_ScenarioB_SpringChains(benchmark::State& state) {
   runSteps(state, world);
 }
 
+// Scenario B without the energy guard (WorldConfig::energy_growth_limit = 0): what the guard costs.
+void BM_ScenarioB_SpringChainsNoEnergyGuard(benchmark::State& state) {
+  World world = springChainWorld(state.range(0), Integrator::kSemiImplicitEuler);
+  WorldConfig config = world.config();
+  config.energy_growth_limit = 0.0;
+  world.setConfig(config);
+  runSteps(state, world);
+}
+
 void BM_ScenarioB_Integrator(benchmark::State& state) {
   const auto integrator = static_cast<Integrator>(state.range(1));
   state.SetLabel(integratorName(integrator));
@@ -118,6 +127,7 @@ void integratorArguments(benchmark::internal::Benchmark* bench) {
 
 BENCHMARK(BM_ScenarioA_FreeFall)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
 BENCHMARK(BM_ScenarioB_SpringChains)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
+BENCHMARK(BM_ScenarioB_SpringChainsNoEnergyGuard)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_ScenarioB_Integrator)->Apply(integratorArguments);
 
 }  // namespace

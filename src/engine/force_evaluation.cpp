@@ -161,8 +161,13 @@ Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleS
     return 0.5 * stiffness * extension * extension;
   };
   Real energy = 0.0;
+  const Real* const position = x.data();
   for (const Spring& s : generators.springs) {
-    energy += elastic(s.stiffness, (x.col(index(s.a)) - x.col(index(s.b))).norm() - s.rest_length);
+    const Real* const xa = position + 3 * index(s.a);
+    const Real* const xb = position + 3 * index(s.b);
+    const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+    energy +=
+        elastic(s.stiffness, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s.rest_length);
   }
   for (const AnchoredSpring& s : generators.anchored_springs) {
     energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length);
