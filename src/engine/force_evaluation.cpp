@@ -8,17 +8,77 @@ namespace {
 
 constexpr Real kMinLength = 1e-12;
 
-// Force on the first end of a spring from a to b (the second end gets the opposite).
+// Force on the first end of a spring from a to b (the second end gets the opposite), in scalars
+// on raw columns so the hot loop has no temporaries; va, vb are read only when c != 0.
 // With d = x_a - x_b, l = |d|, n = d / l: F_a = -(k (l - L) + c (v_a - v_b).n) n.
-// `pull_only` makes it a bungee: nothing while l <= L.
-inline Vec3 springForce(const Vec3& d, const Vec3& relative_velocity, const Real stiffness,
-                        const Real rest_length, const Real damping, const bool pull_only) {
-  const Real length = d.norm();
-  if (length < kMinLength) return Vec3::Zero();
+// `pull_only` makes it a bungee: nothing while l <= L. Returns false when there is no force.
+inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Real* vb,
+                        const Real stiffness, const Real rest_length, const Real damping,
+                        const bool pull_only, Real* force) {
+  const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+  const Real length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (length < kMinLength) return false;
   const Real extension = length - rest_length;
-  if (pull_only && extension <= 0.0) return Vec3::Zero();
-  const Vec3 n = d / length;
-  return -(stiffness * extension + damping * relative_velocity.dot(n)) * n;
+  if (pull_only && extension <= 0.0) return false;
+  // One division instead of three: n = d * (1/l) differs from d / l only in the last bit.
+  const Real inverse_length = 1.0 / length;
+  const Real n[3] = {d[0] * inverse_length, d[1] * inverse_length, d[2] * inverse_length};
+  Real damping_force = 0.0;
+  if (damping != 0.0) {
+    damping_force =
+        damping * ((va[0] - vb[0]) * n[0] + (va[1] - vb[1]) * n[1] + (va[2] - vb[2]) * n[2]);
+  }
+  const Real magnitude = -(stiffness * extension + damping_force);
+  force[0] = magnitude * n[0];
+  force[1] = magnitude * n[1];
+  force[2] = magnitude * n[2];
+  return true;
+}
+
+// Pointer to column i of a 3 x N array that may have an outer stride.
+template <typename Array>
+inline auto column(Array& array, const std::size_t i) {
+  return array.data() + static_cast<Eigen::Index>(i) * array.outerStride();
+}
+
+template <typename Pair>
+void accumulatePairForces(const std::vector<Pair>& pairs, const ParticleStore& particles,
+                          const Eigen::Ref<const Vec3Array>& x,
+                          const Eigen::Ref<const Vec3Array>& v, const bool pull_only,
+                          Eigen::Ref<Vec3Array> force) {
+  for (const Pair& pair : pairs) {
+    const std::size_t a = particles.denseIndexUnchecked(pair.a);
+    const std::size_t b = particles.denseIndexUnchecked(pair.b);
+    Real f[3];
+    if (!springForce(column(x, a), column(x, b), column(v, a), column(v, b), pair.stiffness,
+                     pair.rest_length, pair.damping, pull_only, f)) {
+      continue;
+    }
+    Real* const fa = column(force, a);
+    Real* const fb = column(force, b);
+    for (int c = 0; c < 3; ++c) {
+      fa[c] += f[c];
+      fb[c] -= f[c];
+    }
+  }
+}
+
+template <typename Anchored>
+void accumulateAnchoredForces(const std::vector<Anchored>& springs, const ParticleStore& particles,
+                              const Eigen::Ref<const Vec3Array>& x,
+                              const Eigen::Ref<const Vec3Array>& v, const bool pull_only,
+                              Eigen::Ref<Vec3Array> force) {
+  const Real at_rest[3] = {0.0, 0.0, 0.0};
+  for (const Anchored& spring : springs) {
+    const std::size_t i = particles.denseIndexUnchecked(spring.particle);
+    Real f[3];
+    if (!springForce(column(x, i), spring.anchor.data(), column(v, i), at_rest, spring.stiffness,
+                     spring.rest_length, spring.damping, pull_only, f)) {
+      continue;
+    }
+    Real* const fi = column(force, i);
+    for (int c = 0; c < 3; ++c) fi[c] += f[c];
+  }
 }
 
 // The exact damped harmonic motion of x'' = -w2 x - 2 beta x' (w2 = k/m, beta = c/(2m)) over t:
@@ -62,35 +122,10 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
     force.col(i) -= (drag.k1 + drag.k2 * vi.norm()) * vi;
   }
 
-  for (const Spring& spring : generators.springs) {
-    const std::size_t a = index(spring.a);
-    const std::size_t b = index(spring.b);
-    const Vec3 f = springForce(x.col(a) - x.col(b), v.col(a) - v.col(b), spring.stiffness,
-                               spring.rest_length, spring.damping, false);
-    force.col(a) += f;
-    force.col(b) -= f;
-  }
-
-  for (const AnchoredSpring& spring : generators.anchored_springs) {
-    const std::size_t i = index(spring.particle);
-    force.col(i) += springForce(x.col(i) - spring.anchor, v.col(i), spring.stiffness,
-                                spring.rest_length, spring.damping, false);
-  }
-
-  for (const Bungee& bungee : generators.bungees) {
-    const std::size_t a = index(bungee.a);
-    const std::size_t b = index(bungee.b);
-    const Vec3 f = springForce(x.col(a) - x.col(b), v.col(a) - v.col(b), bungee.stiffness,
-                               bungee.rest_length, bungee.damping, true);
-    force.col(a) += f;
-    force.col(b) -= f;
-  }
-
-  for (const AnchoredBungee& bungee : generators.anchored_bungees) {
-    const std::size_t i = index(bungee.particle);
-    force.col(i) += springForce(x.col(i) - bungee.anchor, v.col(i), bungee.stiffness,
-                                bungee.rest_length, bungee.damping, true);
-  }
+  accumulatePairForces(generators.springs, particles, x, v, false, force);
+  accumulateAnchoredForces(generators.anchored_springs, particles, x, v, false, force);
+  accumulatePairForces(generators.bungees, particles, x, v, true, force);
+  accumulateAnchoredForces(generators.anchored_bungees, particles, x, v, true, force);
 
   for (const Buoyancy& buoyancy : generators.buoyancies) {
     const std::size_t i = index(buoyancy.particle);
@@ -126,8 +161,13 @@ Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleS
     return 0.5 * stiffness * extension * extension;
   };
   Real energy = 0.0;
+  const Real* const position = x.data();
   for (const Spring& s : generators.springs) {
-    energy += elastic(s.stiffness, (x.col(index(s.a)) - x.col(index(s.b))).norm() - s.rest_length);
+    const Real* const xa = position + 3 * index(s.a);
+    const Real* const xb = position + 3 * index(s.b);
+    const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+    energy +=
+        elastic(s.stiffness, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s.rest_length);
   }
   for (const AnchoredSpring& s : generators.anchored_springs) {
     energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length);

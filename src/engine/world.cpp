@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
@@ -75,7 +76,20 @@ World::World(const World& other)
       acceleration_(other.acceleration_),
       implicit_solver_(std::make_unique<ImplicitEulerSolver>()),
       last_divergence_(other.last_divergence_),
-      divergence_count_(other.divergence_count_) {}
+      divergence_count_(other.divergence_count_),
+      stability_report_(other.stability_report_),
+      stability_dirty_(other.stability_dirty_),
+      has_uncounted_work_(other.has_uncounted_work_),
+      movable_mass_(other.movable_mass_),
+      mass_(other.mass_),
+      substeps_used_(other.substeps_used_),
+      energy_known_(other.energy_known_),
+      energy_(other.energy_),
+      free_energy_(other.free_energy_),
+      gravitational_energy_(other.gravitational_energy_),
+      steps_since_energy_reference_(other.steps_since_energy_reference_),
+      paused_(other.paused_),
+      reset_snapshot_(other.reset_snapshot_) {}
 
 World& World::operator=(const World& other) {
   if (this != &other) *this = World(other);
@@ -272,12 +286,15 @@ void World::clear() {
   has_external_force_ = false;
   last_divergence_.reset();
   divergence_count_ = 0;
+  paused_ = false;
   invalidateCaches();
 }
 
 void World::invalidateCaches() {
   verlet_history_h_ = 0.0;
   acceleration_valid_ = false;
+  stability_dirty_ = true;
+  energy_known_ = false;
 }
 
 void World::resizeScratch() {
@@ -313,7 +330,11 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
     for (std::size_t i = 0; i < n; ++i) out.col(i) = mobility[i] * (g + own_acceleration.col(i));
     return;
   }
-  out = particles_.forces();
+  if (has_external_force_) {
+    out = particles_.forces();
+  } else {
+    out.setZero();
+  }
   accumulateGeneratorForces(generators_, particles_, x, v, g.norm(), h, out);
   // a = F/m + g + a_own, zero for immovable particles
   for (std::size_t i = 0; i < n; ++i) {
@@ -322,8 +343,23 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
 }
 
 void World::step() {
-  const Real h = config_.dt / static_cast<Real>(config_.substeps);
-  for (int s = 0; s < config_.substeps; ++s) substep(h);
+  if (paused_) return;
+  const StabilityReport& stability = stabilityReport();
+  int substeps = config_.substeps;
+  if (config_.auto_substep && !stability.stable && stability.substeps_needed > substeps) {
+    substeps = stability.substeps_needed;
+  }
+  substeps_used_ = substeps;
+  const std::uint64_t divergences_before = divergence_count_;
+  const bool guard_energy = energyGuardApplies();
+  if (guard_energy && !energy_known_) {
+    std::tie(free_energy_, gravitational_energy_) = guardEnergies();
+    energy_ = free_energy_ + gravitational_energy_;
+    steps_since_energy_reference_ = 0;
+    energy_known_ = true;
+  }
+  const Real h = config_.dt / static_cast<Real>(substeps);
+  for (int s = 0; s < substeps; ++s) substep(h);
   if (has_external_force_) {
     particles_.forces().setZero();
     has_external_force_ = false;
@@ -332,6 +368,12 @@ void World::step() {
   ++steps_since_origin_;
   ++step_count_;
   detectDivergence();
+  if (guard_energy && divergence_count_ == divergences_before) {
+    checkEnergyGrowth(config_.dt);
+  } else {
+    energy_known_ = false;
+  }
+  if (divergence_count_ != divergences_before) applyDivergencePolicy();
 }
 
 int World::advance(const Real frame_time) {
@@ -341,6 +383,10 @@ int World::advance(const Real frame_time) {
   accumulator_ += clamped;
   int steps = 0;
   while (accumulator_ >= config_.dt) {
+    if (paused_) {
+      accumulator_ = 0.0;
+      break;
+    }
     step();
     accumulator_ -= config_.dt;
     ++steps;
@@ -376,7 +422,8 @@ void World::substep(const Real h) {
 void World::detectDivergence() {
   const auto x = particles_.positions();
   const auto v = particles_.velocities();
-  if (x.allFinite() && v.allFinite()) return;
+  // 0 * value is 0 for every finite value and NaN for Inf or NaN: one vectorised pass.
+  if ((x.array() * 0.0).sum() + (v.array() * 0.0).sum() == 0.0) return;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {
@@ -389,16 +436,124 @@ void World::detectDivergence() {
   }
 }
 
+const StabilityReport& World::stabilityReport() const {
+  if (stability_dirty_) {
+    stability_report_ =
+        analyseStability(generators_, particles_, config_.integrator, config_.dt, config_.substeps);
+    const auto own_acceleration = particles_.accelerations();
+    const auto inverse_mass = particles_.inverseMasses();
+    movable_mass_ = 0.0;
+    mass_.setZero(static_cast<Eigen::Index>(particles_.size()));
+    bool own = false;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      if (inverse_mass[i] <= 0.0) continue;
+      mass_[i] = 1.0 / inverse_mass[i];
+      movable_mass_ += mass_[i];
+      own = own || !own_acceleration.col(i).isZero(0.0);
+    }
+    has_uncounted_work_ = own || !generators_.buoyancies.empty();
+    stability_dirty_ = false;
+  }
+  return stability_report_;
+}
+
+bool World::energyGuardApplies() const {
+  // Without generators every acceleration is constant: nothing can run away.
+  return config_.energy_growth_limit > 0.0 && !generators_.empty() && !has_external_force_ &&
+         !has_uncounted_work_;
+}
+
+void World::checkEnergyGrowth(const Real dt) {
+  ++steps_since_energy_reference_;
+  const auto [free_energy, gravitational] = guardEnergies();
+  const Real energy = free_energy + gravitational;
+  // Allowances: truncation of a constant force (explicit Euler gains m g^2 h^2 / 2 a substep),
+  // and round-off in the sums.
+  const Real truncation = movable_mass_ * config_.gravity.squaredNorm() * dt * dt *
+                          static_cast<Real>(steps_since_energy_reference_);
+  const Real round_off =
+      1e-9 * (std::abs(gravitational_energy_) + std::abs(gravitational) + free_energy_);
+  const Real bound = energy_ + config_.energy_growth_limit * free_energy_ + truncation + round_off;
+  if (energy <= bound) return;
+  // Name the particle with the most kinetic energy: the runaway.
+  const auto v = particles_.velocities();
+  std::size_t fastest = 0;
+  Real most = -1.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Real e = 0.5 * mass_[i] * v.col(i).squaredNorm();
+    if (e > most) {
+      most = e;
+      fastest = i;
+    }
+  }
+  last_divergence_ = DivergenceEvent{
+      step_count_, time(), particles_.idAt(fastest),
+      "energy grew from " + std::to_string(energy_) + " J to " + std::to_string(energy) +
+          " J without external work (bound " + std::to_string(bound) + " J)"};
+  ++divergence_count_;
+  energy_known_ = false;
+}
+
+std::pair<Real, Real> World::guardEnergies() const {
+  const Real* const x = particles_.positions().data();
+  const Real* const v = particles_.velocities().data();
+  const Real* const mass = mass_.data();
+  const Vec3& g = config_.gravity;
+  Real kinetic_twice = 0.0;
+  Real gravitational = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Real* const p = x + 3 * i;
+    const Real* const u = v + 3 * i;
+    kinetic_twice += mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    gravitational -= mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
+  }
+  return {0.5 * kinetic_twice + springEnergy(), gravitational};
+}
+
+void World::applyDivergencePolicy() {
+  switch (config_.divergence_policy) {
+    case DivergencePolicy::kContinue:
+      return;
+    case DivergencePolicy::kPause:
+      paused_ = true;
+      return;
+    case DivergencePolicy::kReset:
+      if (!reset_snapshot_) {
+        paused_ = true;
+        return;
+      }
+      // Everything comes back but the record of what happened and the snapshot itself.
+      const std::optional<DivergenceEvent> event = last_divergence_;
+      const std::uint64_t count = divergence_count_;
+      const std::shared_ptr<const World> snapshot = reset_snapshot_;
+      *this = *snapshot;
+      last_divergence_ = event;
+      divergence_count_ = count;
+      reset_snapshot_ = snapshot;
+      paused_ = false;
+      return;
+  }
+}
+
+void World::setResetSnapshot() {
+  auto snapshot = std::make_shared<World>(*this);
+  snapshot->reset_snapshot_.reset();  // no chain of older snapshots
+  snapshot->paused_ = false;
+  reset_snapshot_ = std::move(snapshot);
+}
+
 ConstVec3Map World::lastAccelerations() const {
   return ConstVec3Map(acceleration_.data(), 3, acceleration_.cols());
 }
 
 Real World::kineticEnergy() const {
-  const auto v = particles_.velocities();
-  const auto inverse_mass = particles_.inverseMasses();
+  const Real* const v = particles_.velocities().data();
+  const Real* const inverse_mass = particles_.inverseMasses().data();
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    if (inverse_mass[i] > 0.0) energy += 0.5 * v.col(i).squaredNorm() / inverse_mass[i];
+    const Real speed_squared =
+        v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+    if (inverse_mass[i] > 0.0) energy += 0.5 * speed_squared / inverse_mass[i];
   }
   return energy;
 }
@@ -406,9 +561,13 @@ Real World::kineticEnergy() const {
 Real World::gravitationalEnergy() const {
   const auto x = particles_.positions();
   const auto inverse_mass = particles_.inverseMasses();
+  const Real* const position = x.data();
+  const Vec3& g = config_.gravity;
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    if (inverse_mass[i] > 0.0) energy -= config_.gravity.dot(x.col(i)) / inverse_mass[i];
+    const Real* const p = position + 3 * i;
+    const Real height_times_g = g[0] * p[0] + g[1] * p[1] + g[2] * p[2];
+    if (inverse_mass[i] > 0.0) energy -= height_times_g / inverse_mass[i];
   }
   return energy;
 }

@@ -16,6 +16,9 @@ Status validateConfig(const WorldConfig& config) {
   if (!std::isfinite(config.max_frame_time) || config.max_frame_time < config.dt) {
     return Status::error("max_frame_time must be finite and >= dt");
   }
+  if (!std::isfinite(config.energy_growth_limit) || config.energy_growth_limit < 0.0) {
+    return Status::error("energy_growth_limit must be finite and >= 0 (0 = energy guard off)");
+  }
   return Status::ok();
 }
 

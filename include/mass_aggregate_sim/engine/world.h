@@ -4,9 +4,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "mass_aggregate_sim/engine/force_generators.h"
 #include "mass_aggregate_sim/engine/particle_store.h"
+#include "mass_aggregate_sim/engine/stability.h"
 #include "mass_aggregate_sim/engine/status.h"
 #include "mass_aggregate_sim/engine/types.h"
 #include "mass_aggregate_sim/engine/world_config.h"
@@ -16,7 +18,8 @@ namespace engine {
 
 class ImplicitEulerSolver;
 
-// A non-finite position or velocity found after a step.
+// A divergence found after a step: a non-finite position or velocity (the first such particle), or
+// energy growing beyond the guard's bound (the particle with the most kinetic energy).
 struct DivergenceEvent {
   std::uint64_t step = 0;
   Real time = 0.0;
@@ -97,6 +100,21 @@ class World {
   // Acceleration each particle had in the last substep (the average over RK4's stages).
   ConstVec3Map lastAccelerations() const;
 
+  // --- stability guard (stability.h, WorldConfig::auto_substep, divergence_policy) ---
+  // The stiffest spring against the integrator's limit at the current dt and substeps; kept up to
+  // date with the scene. !stable is the warning: it names the spring, its omega*h and stable dt.
+  const StabilityReport& stabilityReport() const;
+  // Substeps the last step took (auto_substep can raise config().substeps).
+  int substepsUsed() const { return substeps_used_; }
+  // True after a divergence under DivergencePolicy::kPause (or kReset without a snapshot): step()
+  // and advance() do nothing until resume().
+  bool paused() const { return paused_; }
+  void resume() { paused_ = false; }
+  // Keeps a copy of the whole world as it is now, for DivergencePolicy::kReset.
+  void setResetSnapshot();
+  void clearResetSnapshot() { reset_snapshot_.reset(); }
+  bool hasResetSnapshot() const { return reset_snapshot_ != nullptr; }
+
  private:
   template <typename Generator>
   Result<GeneratorId> addGenerator(std::vector<Generator>& kind, Generator generator);
@@ -116,6 +134,12 @@ class World {
   void integrateRk4(Real h);
   void integrateImplicitEuler(Real h);
   void detectDivergence();
+  // Energy guard bookkeeping around one step; see WorldConfig::energy_growth_limit.
+  bool energyGuardApplies() const;
+  void checkEnergyGrowth(Real dt);
+  // Kinetic + elastic and gravitational energy, from the cached masses (no division).
+  std::pair<Real, Real> guardEnergies() const;
+  void applyDivergencePolicy();
 
   WorldConfig config_;
   ParticleStore particles_;
@@ -145,6 +169,23 @@ class World {
 
   std::optional<DivergenceEvent> last_divergence_;
   std::uint64_t divergence_count_ = 0;
+
+  // Stability guard: the report is recomputed lazily after any scene change.
+  mutable StabilityReport stability_report_;
+  mutable bool stability_dirty_ = true;
+  // Set with the report: per-particle accelerations or buoyancy add work the energy omits.
+  mutable bool has_uncounted_work_ = false;
+  mutable Real movable_mass_ = 0.0;
+  mutable ScalarArray mass_;  // 0 for immovable particles
+  int substeps_used_ = 1;
+  // The energy guard's reference: the state at the first step after the last scene change.
+  bool energy_known_ = false;
+  Real energy_ = 0.0;
+  Real free_energy_ = 0.0;  // kinetic + elastic
+  Real gravitational_energy_ = 0.0;
+  std::uint64_t steps_since_energy_reference_ = 0;
+  bool paused_ = false;
+  std::shared_ptr<const World> reset_snapshot_;
 };
 
 }  // namespace engine

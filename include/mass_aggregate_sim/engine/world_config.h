@@ -1,6 +1,7 @@
 #pragma once
 
 #include "mass_aggregate_sim/engine/integrator.h"
+#include "mass_aggregate_sim/engine/stability.h"
 #include "mass_aggregate_sim/engine/status.h"
 #include "mass_aggregate_sim/engine/types.h"
 
@@ -14,9 +15,25 @@ struct WorldConfig {
   Vec3 gravity = Vec3::Zero();  // m/s^2, applied to every movable particle
   // advance(): longest frame time taken at once, so a stall does not cause a spiral of catch-up.
   Real max_frame_time = 0.25;
+  // Stability guard (stability.h). With auto_substep a step whose stiffest spring would be
+  // unstable at dt / substeps takes the fewest substeps (up to 1000) that make it stable.
+  bool auto_substep = false;
+  DivergencePolicy divergence_policy = DivergencePolicy::kContinue;
+  // Energy guard, for worlds with force generators. The reference is the state at the first step
+  // after the last scene change or external work (addForce, any set or add call); per-particle
+  // accelerations and buoyancy do work the energy omits, so they turn the guard off. A step that
+  // leaves kinetic + gravitational + elastic energy above
+  //   E_ref + energy_growth_limit * (kinetic + elastic)_ref + M |g|^2 dt^2 n + 1e-9 |energies|
+  // (M the movable mass, n the steps since the reference: explicit Euler's truncation under
+  // gravity) is a divergence. A symplectic integrator's energy swings by up to
+  // 1 / (1 - (omega h / 2)^2) along a stable orbit, so the default 10 stays silent up to
+  // omega h ~ 1.9 and fires within a few steps of any exponential runaway. 0 turns the guard off
+  // and saves one energy evaluation per step.
+  Real energy_growth_limit = 10.0;
 };
 
-// dt finite and in (0, 1], substeps in [1, 1000], gravity finite, max_frame_time finite and >= dt.
+// dt finite and in (0, 1], substeps in [1, 1000], gravity finite, max_frame_time finite and >= dt,
+// energy_growth_limit finite and >= 0.
 Status validateConfig(const WorldConfig& config);
 
 }  // namespace engine
