@@ -79,6 +79,7 @@ World::World(const World& other)
       divergence_count_(other.divergence_count_),
       stability_report_(other.stability_report_),
       stability_dirty_(other.stability_dirty_),
+      stability_inputs_(other.stability_inputs_),
       has_uncounted_work_(other.has_uncounted_work_),
       movable_mass_(other.movable_mass_),
       mass_(other.mass_),
@@ -293,7 +294,6 @@ void World::clear() {
 void World::invalidateCaches() {
   verlet_history_h_ = 0.0;
   acceleration_valid_ = false;
-  stability_dirty_ = true;
   energy_known_ = false;
 }
 
@@ -436,8 +436,16 @@ void World::detectDivergence() {
   }
 }
 
+World::StabilityInputs World::stabilityInputs() const {
+  // Particle add and remove also bump the damping version; masses only change through them.
+  return {particles_.size(), generators_.size(), next_generator_id_, particles_.dampingVersion(),
+          config_.dt,        config_.substeps,   config_.integrator};
+}
+
 const StabilityReport& World::stabilityReport() const {
-  if (stability_dirty_) {
+  const StabilityInputs inputs = stabilityInputs();
+  if (stability_dirty_ || !(inputs == stability_inputs_)) {
+    stability_inputs_ = inputs;
     stability_report_ =
         analyseStability(generators_, particles_, config_.integrator, config_.dt, config_.substeps);
     const auto own_acceleration = particles_.accelerations();

@@ -177,6 +177,39 @@ TEST(StabilityGuard, ImplicitEulerAndStiffSpringGeneratorStayStable) {
   EXPECT_LE(world.particles().positions().col(0).norm(), 1.0 + 1e-9);
 }
 
+TEST(StabilityGuard, ReportFollowsTheScene) {
+  Oscillator o = makeOscillator(Integrator::kSemiImplicitEuler, 100.0, 0.01);  // omega h = 1
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  // A stiffer spring on a new particle takes over the report.
+  ParticleSpec spec;
+  spec.position = Vec3(0, 2, 0);
+  const ParticleId other = o.world.addParticle(spec).value();
+  AnchoredSpring stiff;
+  stiff.particle = other;
+  stiff.anchor = Vec3(0, 1, 0);
+  stiff.stiffness = 300.0 * 300.0;  // omega h = 3
+  const GeneratorId stiff_id = o.world.addAnchoredSpring(stiff).value();
+  EXPECT_FALSE(o.world.stabilityReport().stable);
+  EXPECT_EQ(o.world.stabilityReport().generator, stiff_id);
+  // Moving or pushing particles changes nothing; substeps do.
+  ASSERT_TRUE(o.world.setPosition(other, Vec3(0, 3, 0)));
+  ASSERT_TRUE(o.world.addForce(other, Vec3(1, 0, 0)));
+  EXPECT_FALSE(o.world.stabilityReport().stable);
+  WorldConfig config = o.world.config();
+  config.substeps = 2;
+  ASSERT_TRUE(o.world.setConfig(config));
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  EXPECT_NEAR(o.world.stabilityReport().omega_h, 1.5, 1e-12);
+  config.substeps = 1;
+  ASSERT_TRUE(o.world.setConfig(config));
+  ASSERT_TRUE(o.world.removeGenerator(stiff_id));
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  EXPECT_EQ(o.world.stabilityReport().generator, o.spring);
+  // Removing the particle removes its spring: no spring left to report.
+  ASSERT_TRUE(o.world.removeParticle(o.particle));
+  EXPECT_EQ(o.world.stabilityReport().generator, 0u);
+}
+
 TEST(StabilityGuard, CoupledOmegaIsTheHighestModeOfAChain) {
   World world;
   std::vector<ParticleId> ids;
