@@ -48,8 +48,7 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config)
-    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -555,13 +554,11 @@ ConstVec3Map World::lastAccelerations() const {
 }
 
 Real World::kineticEnergy() const {
-  const Real* const v = particles_.velocities().data();
-  const Real* const inverse_mass = particles_.inverseMasses().data();
+  const auto v = particles_.velocities();
+  const auto inverse_mass = particles_.inverseMasses();
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Real speed_squared =
-        v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
-    if (inverse_mass[i] > 0.0) energy += 0.5 * speed_squared / inverse_mass[i];
+    if (inverse_mass[i] > 0.0) energy += 0.5 * v.col(i).squaredNorm() / inverse_mass[i];
   }
   return energy;
 }
@@ -569,13 +566,9 @@ Real World::kineticEnergy() const {
 Real World::gravitationalEnergy() const {
   const auto x = particles_.positions();
   const auto inverse_mass = particles_.inverseMasses();
-  const Real* const position = x.data();
-  const Vec3& g = config_.gravity;
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Real* const p = position + 3 * i;
-    const Real height_times_g = g[0] * p[0] + g[1] * p[1] + g[2] * p[2];
-    if (inverse_mass[i] > 0.0) energy -= height_times_g / inverse_mass[i];
+    if (inverse_mass[i] > 0.0) energy -= config_.gravity.dot(x.col(i)) / inverse_mass[i];
   }
   return energy;
 }
