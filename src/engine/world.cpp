@@ -343,11 +343,7 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
 
 void World::step() {
   if (paused_) return;
-  const StabilityReport& stability = stabilityReport();
-  int substeps = config_.substeps;
-  if (config_.auto_substep && !stability.stable && stability.substeps_needed > substeps) {
-    substeps = stability.substeps_needed;
-  }
+  const int substeps = stabilityReport().substeps_used;
   substeps_used_ = substeps;
   const std::uint64_t divergences_before = divergence_count_;
   const bool guard_energy = energyGuardApplies();
@@ -461,6 +457,10 @@ const StabilityReport& World::stabilityReport() const {
     has_uncounted_work_ = own || !generators_.buoyancies.empty();
     stability_dirty_ = false;
   }
+  // `stable` stays about config().substeps (the warning); substeps_used is what step() takes.
+  const bool raise = config_.auto_substep && !stability_report_.stable &&
+                     stability_report_.substeps_needed > config_.substeps;
+  stability_report_.substeps_used = raise ? stability_report_.substeps_needed : config_.substeps;
   return stability_report_;
 }
 

@@ -144,6 +144,8 @@ TEST(StabilityGuard, AutoSubstepKeepsAStiffSpringStable) {
   ASSERT_TRUE(o.world.setConfig(config));
   for (int s = 0; s < 2000; ++s) o.world.step();
   EXPECT_EQ(o.world.substepsUsed(), 3);
+  EXPECT_EQ(o.world.stabilityReport().substeps_used, 3);
+  EXPECT_FALSE(o.world.stabilityReport().stable);  // the warning about dt itself remains
   EXPECT_EQ(o.world.divergenceCount(), 0u);
   // Semi-implicit Euler's orbit is an ellipse reaching 1 / sqrt(1 - (omega h / 2)^2) = 1.81.
   EXPECT_LT(std::abs(displacement(o)), 1.0 / std::sqrt(1.0 - std::pow(5.0 / 6.0, 2)) + 1e-9);
