@@ -48,8 +48,7 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config)
-    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -79,6 +78,7 @@ World::World(const World& other)
       divergence_count_(other.divergence_count_),
       stability_report_(other.stability_report_),
       stability_dirty_(other.stability_dirty_),
+      stability_inputs_(other.stability_inputs_),
       has_uncounted_work_(other.has_uncounted_work_),
       movable_mass_(other.movable_mass_),
       mass_(other.mass_),
@@ -293,7 +293,6 @@ void World::clear() {
 void World::invalidateCaches() {
   verlet_history_h_ = 0.0;
   acceleration_valid_ = false;
-  stability_dirty_ = true;
   energy_known_ = false;
 }
 
@@ -344,11 +343,7 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
 
 void World::step() {
   if (paused_) return;
-  const StabilityReport& stability = stabilityReport();
-  int substeps = config_.substeps;
-  if (config_.auto_substep && !stability.stable && stability.substeps_needed > substeps) {
-    substeps = stability.substeps_needed;
-  }
+  const int substeps = stabilityReport().substeps_used;
   substeps_used_ = substeps;
   const std::uint64_t divergences_before = divergence_count_;
   const bool guard_energy = energyGuardApplies();
@@ -436,8 +431,16 @@ void World::detectDivergence() {
   }
 }
 
+World::StabilityInputs World::stabilityInputs() const {
+  // Particle add and remove also bump the damping version; masses only change through them.
+  return {particles_.size(), generators_.size(), next_generator_id_, particles_.dampingVersion(),
+          config_.dt,        config_.substeps,   config_.integrator};
+}
+
 const StabilityReport& World::stabilityReport() const {
-  if (stability_dirty_) {
+  const StabilityInputs inputs = stabilityInputs();
+  if (stability_dirty_ || !(inputs == stability_inputs_)) {
+    stability_inputs_ = inputs;
     stability_report_ =
         analyseStability(generators_, particles_, config_.integrator, config_.dt, config_.substeps);
     const auto own_acceleration = particles_.accelerations();
@@ -454,6 +457,10 @@ const StabilityReport& World::stabilityReport() const {
     has_uncounted_work_ = own || !generators_.buoyancies.empty();
     stability_dirty_ = false;
   }
+  // `stable` stays about config().substeps (the warning); substeps_used is what step() takes.
+  const bool raise = config_.auto_substep && !stability_report_.stable &&
+                     stability_report_.substeps_needed > config_.substeps;
+  stability_report_.substeps_used = raise ? stability_report_.substeps_needed : config_.substeps;
   return stability_report_;
 }
 
@@ -547,13 +554,11 @@ ConstVec3Map World::lastAccelerations() const {
 }
 
 Real World::kineticEnergy() const {
-  const Real* const v = particles_.velocities().data();
-  const Real* const inverse_mass = particles_.inverseMasses().data();
+  const auto v = particles_.velocities();
+  const auto inverse_mass = particles_.inverseMasses();
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Real speed_squared =
-        v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
-    if (inverse_mass[i] > 0.0) energy += 0.5 * speed_squared / inverse_mass[i];
+    if (inverse_mass[i] > 0.0) energy += 0.5 * v.col(i).squaredNorm() / inverse_mass[i];
   }
   return energy;
 }
@@ -561,13 +566,9 @@ Real World::kineticEnergy() const {
 Real World::gravitationalEnergy() const {
   const auto x = particles_.positions();
   const auto inverse_mass = particles_.inverseMasses();
-  const Real* const position = x.data();
-  const Vec3& g = config_.gravity;
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Real* const p = position + 3 * i;
-    const Real height_times_g = g[0] * p[0] + g[1] * p[1] + g[2] * p[2];
-    if (inverse_mass[i] > 0.0) energy -= height_times_g / inverse_mass[i];
+    if (inverse_mass[i] > 0.0) energy -= config_.gravity.dot(x.col(i)) / inverse_mass[i];
   }
   return energy;
 }

@@ -144,6 +144,8 @@ TEST(StabilityGuard, AutoSubstepKeepsAStiffSpringStable) {
   ASSERT_TRUE(o.world.setConfig(config));
   for (int s = 0; s < 2000; ++s) o.world.step();
   EXPECT_EQ(o.world.substepsUsed(), 3);
+  EXPECT_EQ(o.world.stabilityReport().substeps_used, 3);
+  EXPECT_FALSE(o.world.stabilityReport().stable);  // the warning about dt itself remains
   EXPECT_EQ(o.world.divergenceCount(), 0u);
   // Semi-implicit Euler's orbit is an ellipse reaching 1 / sqrt(1 - (omega h / 2)^2) = 1.81.
   EXPECT_LT(std::abs(displacement(o)), 1.0 / std::sqrt(1.0 - std::pow(5.0 / 6.0, 2)) + 1e-9);
@@ -175,6 +177,39 @@ TEST(StabilityGuard, ImplicitEulerAndStiffSpringGeneratorStayStable) {
   for (int s = 0; s < 1000; ++s) world.step();
   EXPECT_EQ(world.divergenceCount(), 0u);
   EXPECT_LE(world.particles().positions().col(0).norm(), 1.0 + 1e-9);
+}
+
+TEST(StabilityGuard, ReportFollowsTheScene) {
+  Oscillator o = makeOscillator(Integrator::kSemiImplicitEuler, 100.0, 0.01);  // omega h = 1
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  // A stiffer spring on a new particle takes over the report.
+  ParticleSpec spec;
+  spec.position = Vec3(0, 2, 0);
+  const ParticleId other = o.world.addParticle(spec).value();
+  AnchoredSpring stiff;
+  stiff.particle = other;
+  stiff.anchor = Vec3(0, 1, 0);
+  stiff.stiffness = 300.0 * 300.0;  // omega h = 3
+  const GeneratorId stiff_id = o.world.addAnchoredSpring(stiff).value();
+  EXPECT_FALSE(o.world.stabilityReport().stable);
+  EXPECT_EQ(o.world.stabilityReport().generator, stiff_id);
+  // Moving or pushing particles changes nothing; substeps do.
+  ASSERT_TRUE(o.world.setPosition(other, Vec3(0, 3, 0)));
+  ASSERT_TRUE(o.world.addForce(other, Vec3(1, 0, 0)));
+  EXPECT_FALSE(o.world.stabilityReport().stable);
+  WorldConfig config = o.world.config();
+  config.substeps = 2;
+  ASSERT_TRUE(o.world.setConfig(config));
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  EXPECT_NEAR(o.world.stabilityReport().omega_h, 1.5, 1e-12);
+  config.substeps = 1;
+  ASSERT_TRUE(o.world.setConfig(config));
+  ASSERT_TRUE(o.world.removeGenerator(stiff_id));
+  EXPECT_TRUE(o.world.stabilityReport().stable);
+  EXPECT_EQ(o.world.stabilityReport().generator, o.spring);
+  // Removing the particle removes its spring: no spring left to report.
+  ASSERT_TRUE(o.world.removeParticle(o.particle));
+  EXPECT_EQ(o.world.stabilityReport().generator, 0u);
 }
 
 TEST(StabilityGuard, CoupledOmegaIsTheHighestModeOfAChain) {

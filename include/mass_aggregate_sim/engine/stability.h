@@ -56,7 +56,9 @@ struct StabilityReport {
   // The largest step dt that is stable with substeps_used substeps (a strict bound: any dt
   // below it is stable); infinity when every dt is, 0 when none is.
   Real stable_dt = std::numeric_limits<Real>::infinity();
-  int substeps_used = 1;    // the substeps the world steps with (auto_substep may raise them)
+  // The substeps the world steps with: config().substeps, or substeps_needed when auto_substep
+  // raises them (`stable` still describes config().substeps, so the warning stays visible).
+  int substeps_used = 1;
   int substeps_needed = 1;  // the fewest substeps that make dt stable; 0 when none up to 1000 do
   std::string message;      // empty when stable
 };

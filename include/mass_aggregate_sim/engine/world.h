@@ -170,9 +170,26 @@ class World {
   std::optional<DivergenceEvent> last_divergence_;
   std::uint64_t divergence_count_ = 0;
 
-  // Stability guard: the report is recomputed lazily after any scene change.
+  // Stability guard: the report is recomputed lazily when what it depends on (particles and
+  // their masses, springs, dt, substeps, integrator) may have changed, not on every set or add.
+  struct StabilityInputs {
+    std::size_t particles = 0;
+    std::size_t generators = 0;
+    GeneratorId next_generator_id = 0;
+    std::uint64_t damping_version = 0;
+    Real dt = 0.0;
+    int substeps = 0;
+    Integrator integrator = Integrator::kSemiImplicitEuler;
+    bool operator==(const StabilityInputs& o) const {
+      return particles == o.particles && generators == o.generators &&
+             next_generator_id == o.next_generator_id && damping_version == o.damping_version &&
+             dt == o.dt && substeps == o.substeps && integrator == o.integrator;
+    }
+  };
+  StabilityInputs stabilityInputs() const;
   mutable StabilityReport stability_report_;
   mutable bool stability_dirty_ = true;
+  mutable StabilityInputs stability_inputs_;
   // Set with the report: per-particle accelerations or buoyancy add work the energy omits.
   mutable bool has_uncounted_work_ = false;
   mutable Real movable_mass_ = 0.0;
