@@ -371,10 +371,13 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       }
       const auto add = [&](const std::optional<ShapeContact>& shape, const ColliderId id,
                            const Material& material) {
-        if (shape) {
+        if (hit && hit->collider == id) {
+          // Stopped at its time of impact: touching, whatever rounding says.
+          const ShapeContact touching{shape ? shape->normal : hit->normal,
+                                      shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
+          sink.push(colliderContact(index, slot, id, touching, material));
+        } else if (shape) {
           sink.push(colliderContact(index, slot, id, *shape, material));
-        } else if (hit && hit->collider == id) {
-          sink.push(colliderContact(index, slot, id, ShapeContact{hit->normal, 0.0}, material));
         }
       };
       for (const PlaneCollider& c : colliders_.planes)
