@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mass_aggregate_sim/engine/contact_workspace.h"
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
 #include "mass_aggregate_sim/engine/state_hash.h"
@@ -22,7 +23,8 @@ Status checkSpringValues(const Real stiffness, const Real rest_length, const Rea
 
 template <typename Generator>
 bool refersTo(const Generator& g, const ParticleId id) {
-  if constexpr (std::is_same_v<Generator, Spring> || std::is_same_v<Generator, Bungee>) {
+  if constexpr (std::is_same_v<Generator, Spring> || std::is_same_v<Generator, Bungee> ||
+                std::is_same_v<Generator, Cable> || std::is_same_v<Generator, Rod>) {
     return g.a == id || g.b == id;
   } else {
     return g.particle == id;
@@ -47,7 +49,8 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config)
+    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -74,7 +77,19 @@ World::World(const World& other)
       acceleration_(other.acceleration_),
       implicit_solver_(std::make_unique<ImplicitEulerSolver>()),
       last_divergence_(other.last_divergence_),
-      divergence_count_(other.divergence_count_) {}
+      divergence_count_(other.divergence_count_),
+      colliders_(other.colliders_),
+      next_collider_id_(other.next_collider_id_),
+      links_(other.links_),
+      collision_settings_(other.collision_settings_),
+      last_contact_stats_(other.last_contact_stats_),
+      dropped_this_step_(other.dropped_this_step_),
+      slot_material_(other.slot_material_),
+      slot_has_material_(other.slot_has_material_),
+      custom_material_count_(other.custom_material_count_),
+      contact_workspace_(other.contact_workspace_
+                             ? std::make_unique<ContactWorkspace>(*other.contact_workspace_)
+                             : nullptr) {}
 
 World& World::operator=(const World& other) {
   if (this != &other) *this = World(other);
@@ -118,6 +133,14 @@ Status World::removeParticle(const ParticleId id) {
   eraseReferencing(generators_.anchored_bungees, id);
   eraseReferencing(generators_.buoyancies, id);
   eraseReferencing(generators_.stiff_springs, id);
+  eraseReferencing(links_.cables, id);
+  eraseReferencing(links_.rods, id);
+  eraseReferencing(links_.anchored_cables, id);
+  eraseReferencing(links_.anchored_rods, id);
+  if (id.index < slot_has_material_.size() && slot_has_material_[id.index]) {
+    slot_has_material_[id.index] = 0;
+    --custom_material_count_;
+  }
   const Status removed = particles_.remove(id);
   invalidateCaches();
   return removed;
@@ -175,6 +198,12 @@ Result<GeneratorId> World::addGenerator(std::vector<Generator>& kind, Generator 
   invalidateCaches();
   return generator.id;
 }
+
+// Links share the generators' id space (added in world_contacts.cpp).
+template Result<GeneratorId> World::addGenerator(std::vector<Cable>&, Cable);
+template Result<GeneratorId> World::addGenerator(std::vector<Rod>&, Rod);
+template Result<GeneratorId> World::addGenerator(std::vector<AnchoredCable>&, AnchoredCable);
+template Result<GeneratorId> World::addGenerator(std::vector<AnchoredRod>&, AnchoredRod);
 
 Result<GeneratorId> World::addDrag(const Drag& drag) {
   Status valid = validateParticleRef(drag.particle, "particle");
@@ -255,8 +284,10 @@ Status World::removeGenerator(const GeneratorId id) {
       eraseById(generators_.drags, id) || eraseById(generators_.springs, id) ||
       eraseById(generators_.anchored_springs, id) || eraseById(generators_.bungees, id) ||
       eraseById(generators_.anchored_bungees, id) || eraseById(generators_.buoyancies, id) ||
-      eraseById(generators_.stiff_springs, id);
-  if (!removed) return Status::error("no force generator with id " + std::to_string(id));
+      eraseById(generators_.stiff_springs, id) || eraseById(links_.cables, id) ||
+      eraseById(links_.rods, id) || eraseById(links_.anchored_cables, id) ||
+      eraseById(links_.anchored_rods, id);
+  if (!removed) return Status::error("no force generator or link with id " + std::to_string(id));
   invalidateCaches();
   return Status::ok();
 }
@@ -264,6 +295,11 @@ Status World::removeGenerator(const GeneratorId id) {
 void World::clear() {
   particles_.clear();
   generators_.clear();
+  colliders_.clear();
+  links_.clear();
+  slot_has_material_.assign(slot_has_material_.size(), 0);
+  custom_material_count_ = 0;
+  last_contact_stats_ = ContactStats{};
   time_origin_ = 0.0;
   steps_since_origin_ = 0;
   step_count_ = 0;
@@ -322,6 +358,7 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
 
 void World::step() {
   const Real h = config_.dt / static_cast<Real>(config_.substeps);
+  dropped_this_step_ = 0;
   for (int s = 0; s < config_.substeps; ++s) substep(h);
   if (has_external_force_) {
     particles_.forces().setZero();
@@ -350,6 +387,11 @@ int World::advance(const Real frame_time) {
 void World::substep(const Real h) {
   resizeScratch();
   refreshDampingFactors(h);
+  const bool contacts = contactsActive();
+  if (contacts && collision_settings_.continuous) {
+    if (!contact_workspace_) contact_workspace_ = std::make_unique<ContactWorkspace>();
+    contact_workspace_->substep_start = particles_.positions();
+  }
   switch (config_.integrator) {
     case Integrator::kExplicitEuler:
       integrateExplicitEuler(h);
@@ -370,6 +412,11 @@ void World::substep(const Real h) {
       integrateImplicitEuler(h);
       break;
   }
+  if (contacts) {
+    resolveContacts(h);
+  } else {
+    last_contact_stats_ = ContactStats{};
+  }
 }
 
 void World::detectDivergence() {
@@ -379,8 +426,9 @@ void World::detectDivergence() {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {
-      last_divergence_ = DivergenceEvent{step_count_, time(), particles_.idAt(i),
-                                         bad_x ? "position is not finite" : "velocity is not finite"};
+      last_divergence_ =
+          DivergenceEvent{step_count_, time(), particles_.idAt(i),
+                          bad_x ? "position is not finite" : "velocity is not finite"};
       ++divergence_count_;
       return;
     }
