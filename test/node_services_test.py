@@ -2,6 +2,7 @@
 """Drives the node through its real services and topics (rostest: test/node_services.test)."""
 import math
 import sys
+import time
 import unittest
 
 import rospy
@@ -9,6 +10,7 @@ import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped, Vector3
 from rosgraph_msgs.msg import Clock
+from visualization_msgs.msg import Marker, MarkerArray
 
 from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
 from sim_client import SimClient, spec
@@ -176,6 +178,30 @@ class NodeServicesTest(unittest.TestCase):
         self.assertEqual(clocks, sorted(clocks))
         # After the reset the clock continues from where it was: +10 steps past the +30.
         self.assertGreaterEqual(clocks[-1] - clocks[0], 40 * DT - 1e-9)
+
+    def test_markers_show_particles_and_start_over_after_reset(self):
+        arrays = []
+        sub = rospy.Subscriber('/mass_aggregate_sim/markers', MarkerArray, arrays.append)
+        deadline = time.time() + 5.0
+        while not arrays and time.time() < deadline:
+            time.sleep(0.05)
+        self.assertTrue(arrays, 'no ~markers')
+        self.spawn_one(name='big', x=(0.0, 0.0, 3.0), radius=0.7)
+        self.sim.stats()
+        self.sim.stats()
+        spheres = [m for m in arrays[-1].markers
+                   if m.ns == 'particles' and m.action == Marker.ADD]
+        self.assertEqual(sorted(m.scale.x for m in spheres), [0.1, 1.4])  # one list per radius
+        self.assertEqual(sum(len(m.points) for m in spheres), 2)
+        del arrays[:]
+        self.assertTrue(self.sim.reset().success)
+        self.sim.stats()
+        self.sim.stats()
+        sub.unregister()
+        resets = [a for a in arrays if a.markers and a.markers[0].action == Marker.DELETEALL]
+        self.assertEqual(len(resets), 1)
+        spheres = [m for m in resets[0].markers if m.ns == 'particles']
+        self.assertEqual(sum(len(m.points) for m in spheres), 1)
 
     def test_links_are_added_and_removed(self):
         a = self.spawn_one(name='la', x=(0.0, 0.0, 5.0))

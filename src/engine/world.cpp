@@ -4,6 +4,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "mass_aggregate_sim/engine/contact_workspace.h"
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
 #include "mass_aggregate_sim/engine/state_hash.h"
@@ -23,7 +24,8 @@ Status checkSpringValues(const Real stiffness, const Real rest_length, const Rea
 
 template <typename Generator>
 bool refersTo(const Generator& g, const ParticleId id) {
-  if constexpr (std::is_same_v<Generator, Spring> || std::is_same_v<Generator, Bungee>) {
+  if constexpr (std::is_same_v<Generator, Spring> || std::is_same_v<Generator, Bungee> ||
+                std::is_same_v<Generator, Cable> || std::is_same_v<Generator, Rod>) {
     return g.a == id || g.b == id;
   } else {
     return g.particle == id;
@@ -48,7 +50,8 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config)
+    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -89,7 +92,19 @@ World::World(const World& other)
       gravitational_energy_(other.gravitational_energy_),
       steps_since_energy_reference_(other.steps_since_energy_reference_),
       paused_(other.paused_),
-      reset_snapshot_(other.reset_snapshot_) {}
+      reset_snapshot_(other.reset_snapshot_),
+      colliders_(other.colliders_),
+      next_collider_id_(other.next_collider_id_),
+      links_(other.links_),
+      collision_settings_(other.collision_settings_),
+      last_contact_stats_(other.last_contact_stats_),
+      dropped_this_step_(other.dropped_this_step_),
+      slot_material_(other.slot_material_),
+      slot_has_material_(other.slot_has_material_),
+      custom_material_count_(other.custom_material_count_),
+      contact_workspace_(other.contact_workspace_
+                             ? std::make_unique<ContactWorkspace>(*other.contact_workspace_)
+                             : nullptr) {}
 
 World& World::operator=(const World& other) {
   if (this != &other) *this = World(other);
@@ -133,6 +148,14 @@ Status World::removeParticle(const ParticleId id) {
   eraseReferencing(generators_.anchored_bungees, id);
   eraseReferencing(generators_.buoyancies, id);
   eraseReferencing(generators_.stiff_springs, id);
+  eraseReferencing(links_.cables, id);
+  eraseReferencing(links_.rods, id);
+  eraseReferencing(links_.anchored_cables, id);
+  eraseReferencing(links_.anchored_rods, id);
+  if (id.index < slot_has_material_.size() && slot_has_material_[id.index]) {
+    slot_has_material_[id.index] = 0;
+    --custom_material_count_;
+  }
   const Status removed = particles_.remove(id);
   invalidateCaches();
   return removed;
@@ -190,6 +213,12 @@ Result<GeneratorId> World::addGenerator(std::vector<Generator>& kind, Generator 
   invalidateCaches();
   return generator.id;
 }
+
+// Links share the generators' id space (added in world_contacts.cpp).
+template Result<GeneratorId> World::addGenerator(std::vector<Cable>&, Cable);
+template Result<GeneratorId> World::addGenerator(std::vector<Rod>&, Rod);
+template Result<GeneratorId> World::addGenerator(std::vector<AnchoredCable>&, AnchoredCable);
+template Result<GeneratorId> World::addGenerator(std::vector<AnchoredRod>&, AnchoredRod);
 
 Result<GeneratorId> World::addDrag(const Drag& drag) {
   Status valid = validateParticleRef(drag.particle, "particle");
@@ -270,8 +299,10 @@ Status World::removeGenerator(const GeneratorId id) {
       eraseById(generators_.drags, id) || eraseById(generators_.springs, id) ||
       eraseById(generators_.anchored_springs, id) || eraseById(generators_.bungees, id) ||
       eraseById(generators_.anchored_bungees, id) || eraseById(generators_.buoyancies, id) ||
-      eraseById(generators_.stiff_springs, id);
-  if (!removed) return Status::error("no force generator with id " + std::to_string(id));
+      eraseById(generators_.stiff_springs, id) || eraseById(links_.cables, id) ||
+      eraseById(links_.rods, id) || eraseById(links_.anchored_cables, id) ||
+      eraseById(links_.anchored_rods, id);
+  if (!removed) return Status::error("no force generator or link with id " + std::to_string(id));
   invalidateCaches();
   return Status::ok();
 }
@@ -279,6 +310,11 @@ Status World::removeGenerator(const GeneratorId id) {
 void World::clear() {
   particles_.clear();
   generators_.clear();
+  colliders_.clear();
+  links_.clear();
+  slot_has_material_.assign(slot_has_material_.size(), 0);
+  custom_material_count_ = 0;
+  last_contact_stats_ = ContactStats{};
   time_origin_ = 0.0;
   steps_since_origin_ = 0;
   step_count_ = 0;
@@ -354,6 +390,7 @@ void World::step() {
     energy_known_ = true;
   }
   const Real h = config_.dt / static_cast<Real>(substeps);
+  dropped_this_step_ = 0;
   for (int s = 0; s < substeps; ++s) substep(h);
   if (has_external_force_) {
     particles_.forces().setZero();
@@ -363,7 +400,10 @@ void World::step() {
   ++steps_since_origin_;
   ++step_count_;
   detectDivergence();
-  if (guard_energy && divergence_count_ == divergences_before) {
+  // Contact resolution and links remove energy but their position corrections may add a little:
+  // a step with contacts takes a new reference instead of being judged.
+  const bool had_contacts = contactsActive() && last_contact_stats_.contacts > 0;
+  if (guard_energy && divergence_count_ == divergences_before && !had_contacts) {
     checkEnergyGrowth(config_.dt);
   } else {
     energy_known_ = false;
@@ -392,6 +432,11 @@ int World::advance(const Real frame_time) {
 void World::substep(const Real h) {
   resizeScratch();
   refreshDampingFactors(h);
+  const bool contacts = contactsActive();
+  if (contacts && collision_settings_.continuous) {
+    if (!contact_workspace_) contact_workspace_ = std::make_unique<ContactWorkspace>();
+    contact_workspace_->substep_start = particles_.positions();
+  }
   switch (config_.integrator) {
     case Integrator::kExplicitEuler:
       integrateExplicitEuler(h);
@@ -411,6 +456,11 @@ void World::substep(const Real h) {
     case Integrator::kImplicitEuler:
       integrateImplicitEuler(h);
       break;
+  }
+  if (contacts) {
+    resolveContacts(h);
+  } else {
+    last_contact_stats_ = ContactStats{};
   }
 }
 

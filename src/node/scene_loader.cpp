@@ -3,6 +3,7 @@
 #include <xmlrpcpp/XmlRpcException.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -57,8 +58,8 @@ class SceneBuilder {
       return loaded;
     }
     checkKeys(scene, key,
-              {"name", "description", "rate", "substeps", "integrator", "gravity", "particles",
-               "lines", "blocks", "links", "forces"});
+              {"name", "description", "rate", "dt", "substeps", "integrator", "gravity",
+               "particles", "lines", "blocks", "links", "forces"});
     loaded.name = stringOr(scene, key, "name", "");
     loaded.description = stringOr(scene, key, "description", "");
     world_ = engine::World(config(scene, key, loaded));
@@ -74,12 +75,26 @@ class SceneBuilder {
  private:
   engine::WorldConfig config(XmlRpcValue& scene, const std::string& key, LoadedScene& loaded) {
     engine::WorldConfig config;
-    loaded.rate = overrides_.rate ? *overrides_.rate : realOr(scene, key, "rate", kDefaultRate);
-    const std::string rate_key = overrides_.rate ? "~rate" : key + ".rate";
+    // The scene gives its step either as a rate (Hz) or as dt (s), not both.
+    if (has(scene, "rate") && has(scene, "dt")) throw ParamError(key, "give rate or dt, not both");
+    std::string rate_key = key + ".rate";
+    loaded.rate = realOr(scene, key, "rate", kDefaultRate);
+    std::optional<Real> dt;
+    if (has(scene, "dt")) {
+      rate_key = key + ".dt";
+      dt = readReal(scene["dt"], rate_key);
+      if (!(*dt > 0.0)) throw ParamError(rate_key, "must be > 0 s");
+      loaded.rate = 1.0 / *dt;
+    }
+    if (overrides_.rate) {
+      loaded.rate = *overrides_.rate;
+      rate_key = "~rate";
+      dt.reset();
+    }
     if (!(loaded.rate > 0.0) || loaded.rate > 100000.0) {
       throw ParamError(rate_key, "must be in (0, 100000] steps per second");
     }
-    config.dt = 1.0 / loaded.rate;
+    config.dt = dt ? *dt : 1.0 / loaded.rate;
     config.max_frame_time = std::max(config.max_frame_time, config.dt);
     config.substeps = overrides_.substeps ? *overrides_.substeps : intOr(scene, key, "substeps", 1);
     if (config.substeps < 1 || config.substeps > 1000) {

@@ -71,6 +71,15 @@ particles:
   EXPECT_EQ(world.particles().inverseMasses()[1 - i], 0.0);
 }
 
+TEST(SceneLoaderTest, StepGivenAsDt) {
+  const auto loaded = load("{dt: 0.004}");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  EXPECT_DOUBLE_EQ(loaded.value().rate, 250.0);
+  EXPECT_DOUBLE_EQ(loaded.value().world.config().dt, 0.004);
+  expectError("{dt: 0.01, rate: 100}", "scene", "rate or dt, not both");
+  expectError("{dt: 0}", "scene.dt", "must be > 0");
+}
+
 TEST(SceneLoaderTest, OverridesWinOverTheScene) {
   SceneOverrides overrides;
   overrides.rate = 250.0;

@@ -5,9 +5,14 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "mass_aggregate_sim/engine/colliders.h"
+#include "mass_aggregate_sim/engine/collision_settings.h"
 #include "mass_aggregate_sim/engine/force_generators.h"
+#include "mass_aggregate_sim/engine/links.h"
 #include "mass_aggregate_sim/engine/particle_store.h"
+#include "mass_aggregate_sim/engine/queries.h"
 #include "mass_aggregate_sim/engine/stability.h"
 #include "mass_aggregate_sim/engine/status.h"
 #include "mass_aggregate_sim/engine/types.h"
@@ -17,6 +22,7 @@ namespace mass_aggregate_sim {
 namespace engine {
 
 class ImplicitEulerSolver;
+struct ContactWorkspace;
 
 // A divergence found after a step: a non-finite position or velocity (the first such particle), or
 // energy growing beyond the guard's bound (the particle with the most kinetic energy).
@@ -46,7 +52,7 @@ class World {
 
   // --- particles ---
   Result<ParticleId> addParticle(const ParticleSpec& spec);
-  // Also removes every force generator that refers to the particle.
+  // Also removes every force generator and link that refers to the particle.
   Status removeParticle(ParticleId id);
   Status setPosition(ParticleId id, const Vec3& position);
   Status setVelocity(ParticleId id, const Vec3& velocity);
@@ -64,10 +70,43 @@ class World {
   Result<GeneratorId> addAnchoredBungee(const AnchoredBungee& bungee);
   Result<GeneratorId> addBuoyancy(const Buoyancy& buoyancy);
   Result<GeneratorId> addStiffSpring(const StiffSpring& spring);
+  // Removes a force generator or a link (they share one id space).
   Status removeGenerator(GeneratorId id);
   const ForceGenerators& generators() const { return generators_; }
 
-  // Removes all particles and generators; time goes back to zero.
+  // --- static colliders (particles collide with them as spheres of their radius) ---
+  // Each validated: finite values, positive sizes, restitution in [0, 1], friction >= 0; plane
+  // normals and box orientations are normalised.
+  Result<ColliderId> addPlane(const PlaneCollider& plane);
+  Result<ColliderId> addSphere(const SphereCollider& sphere);
+  Result<ColliderId> addBox(const BoxCollider& box);
+  Result<ColliderId> addCapsule(const CapsuleCollider& capsule);
+  Status removeCollider(ColliderId id);
+  const Colliders& colliders() const { return colliders_; }
+
+  // --- links: hard constraints between particles or to anchors, ids from the generator space ---
+  Result<GeneratorId> addCable(const Cable& cable);
+  Result<GeneratorId> addRod(const Rod& rod);
+  Result<GeneratorId> addAnchoredCable(const AnchoredCable& cable);
+  Result<GeneratorId> addAnchoredRod(const AnchoredRod& rod);
+  const Links& links() const { return links_; }
+
+  // --- contacts ---
+  Status setCollisionSettings(const CollisionSettings& settings);
+  const CollisionSettings& collisionSettings() const { return collision_settings_; }
+  // A particle's own material for particle-particle contacts; a pair combines the two (mean
+  // restitution, geometric mean friction). Particles without one use the collision settings'.
+  Status setParticleMaterial(ParticleId id, const Material& material);
+  // Diagnostics of the contact phase of the last substep (dropped: summed over the last step).
+  const ContactStats& lastContactStats() const { return last_contact_stats_; }
+
+  // --- queries ---
+  std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, Real max_distance) const;
+  // Particles whose sphere overlaps the given sphere / axis-aligned box.
+  std::vector<ParticleId> overlapSphere(const Vec3& center, Real radius) const;
+  std::vector<ParticleId> overlapBox(const Vec3& center, const Vec3& half_extents) const;
+
+  // Removes all particles, generators, links and colliders; time goes back to zero. Settings stay.
   void clear();
 
   // --- time ---
@@ -140,6 +179,14 @@ class World {
   // Kinetic + elastic and gravitational energy, from the cached masses (no division).
   std::pair<Real, Real> guardEnergies() const;
   void applyDivergencePolicy();
+  // Contact phase (world_contacts.cpp), run after each substep's integration.
+  bool contactsActive() const;
+  void resolveContacts(Real h);
+  void sweepParticles(ContactWorkspace& workspace);
+  void generateContacts(ContactWorkspace& workspace, std::size_t& dropped);
+  void buildLinkedPairs(ContactWorkspace& workspace) const;
+  Material particleMaterial(std::size_t dense) const;
+  Result<ColliderId> nextColliderId();
 
   WorldConfig config_;
   ParticleStore particles_;
@@ -203,6 +250,18 @@ class World {
   std::uint64_t steps_since_energy_reference_ = 0;
   bool paused_ = false;
   std::shared_ptr<const World> reset_snapshot_;
+  Colliders colliders_;
+  ColliderId next_collider_id_ = 1;
+  Links links_;
+  CollisionSettings collision_settings_;
+  ContactStats last_contact_stats_;
+  std::size_t dropped_this_step_ = 0;
+  // Particle materials by slot (ParticleId::index), so they survive the store's dense moves.
+  std::vector<Material> slot_material_;
+  std::vector<std::uint8_t> slot_has_material_;
+  std::size_t custom_material_count_ = 0;
+  // Scratch of the contact phase; created on first use, not copied.
+  std::unique_ptr<ContactWorkspace> contact_workspace_;
 };
 
 }  // namespace engine

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/collision_settings.h"
+#include "mass_aggregate_sim/engine/contact.h"
+#include "mass_aggregate_sim/engine/types.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// Iterative impulse resolver. Velocities first, then positions, each by Gauss-Seidel passes over
+// the contacts in order until a pass changes less than the tolerance or max_iterations is reached:
+// O(passes x contacts), no search for the worst contact.
+//
+// Velocity pass, per contact: v_sep = (v_a - v_b).n; a closing contact (v_sep < 0) gets the
+// impulse j = (v_target - v_sep) / (w_a + w_b), shared by inverse mass w. The target is
+// -e v_impact, where v_impact is v_sep less what the forces (of lastAccelerations) built up along
+// n while the particles were already in contact during the substep. A contact whose closing speed,
+// less all the forces built over the substep, is below two more substeps of it is resting and gets
+// v_target = 0, which keeps resting contacts still without bouncing. Friction then removes
+// tangential velocity, bounded by mu j. Rods are bilateral (target 0, either sign); cables pull
+// only and reflect with their restitution. Links keep their total impulse (clamped to pulling for
+// cables) and start the next substep from it (warm starting), so a loaded structure does not
+// rebuild its tensions from zero every substep.
+//
+// Position pass, per contact: overlap beyond the slop is removed down to half the slop, moving a
+// and b by w_a/(w_a+w_b) and w_b/(w_a+w_b) of it (dp_a = m_b/(m_a+m_b) d n). Links are recomputed
+// from the current positions and corrected to their exact length.
+class ContactResolver {
+ public:
+  // acceleration: each particle's acceleration over the last substep of length h.
+  void resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
+               const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
+               Real h, const CollisionSettings& settings, ContactStats& stats);
+  // Dense indices of the particles whose position or velocity the last resolve() changed.
+  const std::vector<std::uint32_t>& touched() const { return touched_; }
+
+ private:
+  void touch(std::uint32_t i);
+  int resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
+                        const ConstScalarMap& inverse_mass, Real h,
+                        const CollisionSettings& settings);
+  int resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
+                       const ConstScalarMap& inverse_mass, const CollisionSettings& settings);
+  // For a link: current normal (from a towards b) and length error; false when degenerate.
+  bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
+
+  // Per contact: w_a + w_b, closing velocity the forces built while in contact (<= 0), and
+  // whether the contact is resting.
+  std::vector<Real> inverse_mass_sum_;
+  std::vector<Real> built_velocity_;
+  std::vector<std::uint8_t> resting_;
+  std::vector<std::uint8_t> velocity_active_;
+  std::vector<Real> total_;           // per contact: accumulated normal impulse this substep
+  std::vector<Real> target_;          // per contact: target separating velocity
+  std::vector<Vec3> friction_total_;  // per contact: accumulated friction impulse
+  // (contact key, normal impulse) of the last substep, sorted by key: the warm start.
+  std::vector<std::pair<std::uint64_t, Real>> warm_impulses_;
+  std::vector<std::pair<std::uint64_t, Real>> next_warm_impulses_;
+  Vec3Array displacement_;
+  std::vector<std::uint8_t> touched_flag_;
+  std::vector<std::uint32_t> touched_;
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

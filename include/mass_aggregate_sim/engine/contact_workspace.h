@@ -1,0 +1,43 @@
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/broadphase.h"
+#include "mass_aggregate_sim/engine/colliders.h"
+#include "mass_aggregate_sim/engine/contact.h"
+#include "mass_aggregate_sim/engine/contact_resolver.h"
+#include "mass_aggregate_sim/engine/types.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// Buffers the contact phase of World keeps between substeps (never part of the world's state).
+struct ContactWorkspace {
+  std::vector<Contact> contacts;
+  std::vector<Contact> sorted_contacts;
+  std::vector<std::pair<Real, std::uint32_t>> order;  // (height, contact) for bottom-up order
+  std::vector<IndexPair> pairs;
+  std::vector<std::uint8_t> pair_is_swept;  // per pair: caught by the swept test this substep
+  std::vector<std::uint64_t> linked_pairs;  // sorted (min dense << 32 | max dense) of linked pairs
+  Vec3Array box_lo;
+  Vec3Array box_hi;
+  Vec3Array substep_start;           // positions before integration, kept only when CCD is on
+  std::vector<Real> time_of_impact;  // per particle, fraction of the substep; 1 = none
+  // Per particle: the collider its swept test hit first (index into ccd_hits), or -1.
+  std::vector<std::int32_t> collider_hit;
+  struct ColliderHit {
+    ColliderId collider;
+    Real time;
+    Vec3 normal;
+    Real restitution;
+    Real friction;
+  };
+  std::vector<ColliderHit> collider_hits;
+  BroadphaseFinder broadphase;
+  ContactResolver resolver;
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,547 @@
+// World's colliders, links, contact settings, queries and the contact phase of each substep.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mass_aggregate_sim/engine/contact_workspace.h"
+#include "mass_aggregate_sim/engine/shape_geometry.h"
+#include "mass_aggregate_sim/engine/world.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+bool finitePositive(const Real value) { return std::isfinite(value) && value > 0.0; }
+
+Status checkMaterial(const Material& material) {
+  if (!std::isfinite(material.restitution) || material.restitution < 0.0 ||
+      material.restitution > 1.0) {
+    return Status::error("restitution must be in [0, 1]");
+  }
+  if (!std::isfinite(material.friction) || material.friction < 0.0) {
+    return Status::error("friction must be finite and >= 0");
+  }
+  return Status::ok();
+}
+
+std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t{a} << 32) | b;
+}
+
+template <typename Collider>
+bool eraseCollider(std::vector<Collider>& kind, const ColliderId id) {
+  const auto it =
+      std::find_if(kind.begin(), kind.end(), [id](const Collider& c) { return c.id == id; });
+  if (it == kind.end()) return false;
+  kind.erase(it);
+  return true;
+}
+
+// Appends contacts up to the limit (0: none) and counts the ones beyond it.
+class ContactSink {
+ public:
+  ContactSink(std::vector<Contact>& contacts, const std::size_t limit, std::size_t& dropped)
+      : contacts_(contacts), limit_(limit), dropped_(dropped) {}
+  void push(const Contact& contact) {
+    if (limit_ != 0 && contacts_.size() >= limit_) {
+      ++dropped_;
+      return;
+    }
+    contacts_.push_back(contact);
+  }
+
+ private:
+  std::vector<Contact>& contacts_;
+  std::size_t limit_;
+  std::size_t& dropped_;
+};
+
+Contact colliderContact(const std::uint32_t i, const std::uint32_t slot, const ColliderId collider,
+                        const ShapeContact& shape, const Material& material) {
+  Contact c;
+  c.a = i;
+  c.key = colliderContactKey(slot, collider);
+  c.normal = shape.normal;
+  c.penetration = shape.penetration;
+  c.restitution = material.restitution;
+  c.friction = material.friction;
+  return c;
+}
+
+// Gaps narrower than this get a contact too (speculative: it only stops them closing faster than
+// the gap within the substep), so a particle lifted off its support by a neighbour's correction
+// does not fall freely for a substep and land with a jolt.
+Real contactMargin(const CollisionSettings& settings) { return 2.0 * settings.penetration_slop; }
+
+}  // namespace
+
+// --- colliders ---
+
+Result<ColliderId> World::nextColliderId() {
+  if (next_collider_id_ == std::numeric_limits<ColliderId>::max()) {
+    return Status::error("collider ids exhausted");
+  }
+  return next_collider_id_++;
+}
+
+Result<ColliderId> World::addPlane(const PlaneCollider& plane) {
+  Status valid = checkMaterial(plane.material);
+  if (valid && (!plane.normal.allFinite() || plane.normal.norm() < 1e-9)) {
+    valid = Status::error("plane normal must be a finite non-zero vector");
+  }
+  if (valid && !std::isfinite(plane.offset)) valid = Status::error("plane offset is not finite");
+  if (!valid) return valid;
+  const Result<ColliderId> id = nextColliderId();
+  if (!id) return id;
+  PlaneCollider added = plane;
+  // n.x < offset stays the same half-space after dividing both sides by |n|.
+  const Real length = plane.normal.norm();
+  added.normal /= length;
+  added.offset /= length;
+  added.id = *id;
+  colliders_.planes.push_back(added);
+  return id;
+}
+
+Result<ColliderId> World::addSphere(const SphereCollider& sphere) {
+  Status valid = checkMaterial(sphere.material);
+  if (valid && !sphere.center.allFinite()) valid = Status::error("sphere center is not finite");
+  if (valid && !finitePositive(sphere.radius)) {
+    valid = Status::error("sphere radius must be finite and > 0");
+  }
+  if (!valid) return valid;
+  const Result<ColliderId> id = nextColliderId();
+  if (!id) return id;
+  SphereCollider added = sphere;
+  added.id = *id;
+  colliders_.spheres.push_back(added);
+  return id;
+}
+
+Result<ColliderId> World::addBox(const BoxCollider& box) {
+  Status valid = checkMaterial(box.material);
+  if (valid && !box.center.allFinite()) valid = Status::error("box center is not finite");
+  if (valid && !(box.half_extents.allFinite() && (box.half_extents.array() > 0.0).all())) {
+    valid = Status::error("box half_extents must be finite and > 0");
+  }
+  if (valid && (!box.orientation.coeffs().allFinite() || box.orientation.norm() < 1e-9)) {
+    valid = Status::error("box orientation must be a finite non-zero quaternion");
+  }
+  if (!valid) return valid;
+  const Result<ColliderId> id = nextColliderId();
+  if (!id) return id;
+  BoxCollider added = box;
+  added.orientation.normalize();
+  added.id = *id;
+  colliders_.boxes.push_back(added);
+  return id;
+}
+
+Result<ColliderId> World::addCapsule(const CapsuleCollider& capsule) {
+  Status valid = checkMaterial(capsule.material);
+  if (valid && !(capsule.a.allFinite() && capsule.b.allFinite())) {
+    valid = Status::error("capsule ends a and b must be finite");
+  }
+  if (valid && !finitePositive(capsule.radius)) {
+    valid = Status::error("capsule radius must be finite and > 0");
+  }
+  if (!valid) return valid;
+  const Result<ColliderId> id = nextColliderId();
+  if (!id) return id;
+  CapsuleCollider added = capsule;
+  added.id = *id;
+  colliders_.capsules.push_back(added);
+  return id;
+}
+
+Status World::removeCollider(const ColliderId id) {
+  const bool removed =
+      eraseCollider(colliders_.planes, id) || eraseCollider(colliders_.spheres, id) ||
+      eraseCollider(colliders_.boxes, id) || eraseCollider(colliders_.capsules, id);
+  if (!removed) return Status::error("no collider with id " + std::to_string(id));
+  return Status::ok();
+}
+
+// --- links ---
+
+Result<GeneratorId> World::addCable(const Cable& cable) {
+  Status valid = validateParticleRef(cable.a, "a");
+  if (valid) valid = validateParticleRef(cable.b, "b");
+  if (valid && cable.a == cable.b) valid = Status::error("a and b must be different particles");
+  if (valid && !finitePositive(cable.max_length)) {
+    valid = Status::error("max_length must be finite and > 0");
+  }
+  if (valid) valid = checkMaterial(Material{cable.restitution, 0.0});
+  if (!valid) return valid;
+  return addGenerator(links_.cables, cable);
+}
+
+Result<GeneratorId> World::addRod(const Rod& rod) {
+  Status valid = validateParticleRef(rod.a, "a");
+  if (valid) valid = validateParticleRef(rod.b, "b");
+  if (valid && rod.a == rod.b) valid = Status::error("a and b must be different particles");
+  if (valid && !finitePositive(rod.length)) valid = Status::error("length must be finite and > 0");
+  if (!valid) return valid;
+  return addGenerator(links_.rods, rod);
+}
+
+Result<GeneratorId> World::addAnchoredCable(const AnchoredCable& cable) {
+  Status valid = validateParticleRef(cable.particle, "particle");
+  if (valid && !cable.anchor.allFinite()) valid = Status::error("anchor is not finite");
+  if (valid && !finitePositive(cable.max_length)) {
+    valid = Status::error("max_length must be finite and > 0");
+  }
+  if (valid) valid = checkMaterial(Material{cable.restitution, 0.0});
+  if (!valid) return valid;
+  return addGenerator(links_.anchored_cables, cable);
+}
+
+Result<GeneratorId> World::addAnchoredRod(const AnchoredRod& rod) {
+  Status valid = validateParticleRef(rod.particle, "particle");
+  if (valid && !rod.anchor.allFinite()) valid = Status::error("anchor is not finite");
+  if (valid && !finitePositive(rod.length)) valid = Status::error("length must be finite and > 0");
+  if (!valid) return valid;
+  return addGenerator(links_.anchored_rods, rod);
+}
+
+// --- settings and materials ---
+
+Status World::setCollisionSettings(const CollisionSettings& settings) {
+  const Status valid = validateCollisionSettings(settings);
+  if (!valid) return valid;
+  collision_settings_ = settings;
+  return Status::ok();
+}
+
+Status World::setParticleMaterial(const ParticleId id, const Material& material) {
+  Status valid = validateParticleRef(id, "particle");
+  if (valid) valid = checkMaterial(material);
+  if (!valid) return valid;
+  if (slot_has_material_.size() <= id.index) {
+    slot_has_material_.resize(id.index + 1, 0);
+    slot_material_.resize(id.index + 1);
+  }
+  if (!slot_has_material_[id.index]) ++custom_material_count_;
+  slot_has_material_[id.index] = 1;
+  slot_material_[id.index] = material;
+  return Status::ok();
+}
+
+Material World::particleMaterial(const std::size_t dense) const {
+  const std::uint32_t slot = particles_.idAt(dense).index;
+  if (slot < slot_has_material_.size() && slot_has_material_[slot]) return slot_material_[slot];
+  return Material{collision_settings_.particle_restitution, collision_settings_.particle_friction};
+}
+
+// --- queries ---
+
+std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction,
+                                     const Real max_distance) const {
+  return raycastScene(particles_, colliders_, origin, direction, max_distance);
+}
+
+std::vector<ParticleId> World::overlapSphere(const Vec3& center, const Real radius) const {
+  return particlesOverlappingSphere(particles_, center, radius);
+}
+
+std::vector<ParticleId> World::overlapBox(const Vec3& center, const Vec3& half_extents) const {
+  return particlesOverlappingBox(particles_, center, half_extents);
+}
+
+// --- the contact phase ---
+
+bool World::contactsActive() const {
+  return !colliders_.empty() || !links_.empty() ||
+         (collision_settings_.particle_collisions && particles_.size() > 1);
+}
+
+void World::buildLinkedPairs(ContactWorkspace& workspace) const {
+  workspace.linked_pairs.clear();
+  const auto dense = [this](const ParticleId id) {
+    return static_cast<std::uint32_t>(particles_.denseIndexUnchecked(id));
+  };
+  for (const Cable& cable : links_.cables) {
+    workspace.linked_pairs.push_back(pairKey(dense(cable.a), dense(cable.b)));
+  }
+  for (const Rod& rod : links_.rods) {
+    workspace.linked_pairs.push_back(pairKey(dense(rod.a), dense(rod.b)));
+  }
+  std::sort(workspace.linked_pairs.begin(), workspace.linked_pairs.end());
+}
+
+// Swept tests for particles that moved more than their radius this substep: each is moved back
+// to its earliest time of impact with a collider or another particle, where a contact is made.
+void World::sweepParticles(ContactWorkspace& ws) {
+  auto x = particles_.positions();
+  const auto radius = particles_.radii();
+  const auto inverse_mass = particles_.inverseMasses();
+  const std::size_t n = particles_.size();
+  const Vec3Array& start = ws.substep_start;
+  ws.time_of_impact.assign(n, 1.0);
+  ws.collider_hit.assign(n, -1);
+  ws.collider_hits.clear();
+
+  for (std::size_t i = 0; i < n; ++i) {
+    if (inverse_mass[i] <= 0.0) continue;
+    const Vec3 from = start.col(i);
+    const Vec3 motion = Vec3(x.col(i)) - from;
+    const Real distance = motion.norm();
+    // A move shorter than the radius keeps the sphere overlapping whatever the centre crossed.
+    if (!(distance > radius[i])) continue;
+    const Vec3 direction = motion / distance;
+    const Real r = radius[i];
+    std::optional<RayShapeHit> best;
+    ContactWorkspace::ColliderHit hit{};
+    const auto offer = [&](const std::optional<RayShapeHit>& candidate, const ColliderId id,
+                           const Material& material) {
+      if (candidate && (!best || candidate->t < best->t)) {
+        best = candidate;
+        hit = {id, candidate->t / distance, candidate->normal, material.restitution,
+               material.friction};
+      }
+    };
+    for (const PlaneCollider& c : colliders_.planes) {
+      offer(rayVsPlane(from, direction, distance, c, r), c.id, c.material);
+    }
+    for (const SphereCollider& c : colliders_.spheres) {
+      offer(rayVsSphere(from, direction, distance, c.center, c.radius + r), c.id, c.material);
+    }
+    for (const BoxCollider& c : colliders_.boxes) {
+      offer(rayVsBox(from, direction, distance, c, r), c.id, c.material);
+    }
+    for (const CapsuleCollider& c : colliders_.capsules) {
+      offer(rayVsCapsule(from, direction, distance, c, r), c.id, c.material);
+    }
+    if (best) {
+      ws.time_of_impact[i] = hit.time;
+      ws.collider_hit[i] = static_cast<std::int32_t>(ws.collider_hits.size());
+      ws.collider_hits.push_back(hit);
+    }
+  }
+
+  ws.pair_is_swept.assign(ws.pairs.size(), 0);
+  for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
+    const auto [a, b] = ws.pairs[k];
+    const Vec3 motion_a = Vec3(x.col(a)) - start.col(a);
+    const Vec3 motion_b = Vec3(x.col(b)) - start.col(b);
+    if (!(motion_a.norm() > radius[a] || motion_b.norm() > radius[b])) continue;
+    const auto s = sweptSpheresTimeOfImpact(Vec3(start.col(a) - start.col(b)), motion_a - motion_b,
+                                            radius[a] + radius[b]);
+    if (!s) continue;
+    ws.pair_is_swept[k] = 1;
+    ws.time_of_impact[a] = std::min(ws.time_of_impact[a], *s);
+    ws.time_of_impact[b] = std::min(ws.time_of_impact[b], *s);
+  }
+
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Real s = ws.time_of_impact[i];
+    if (s >= 1.0) continue;
+    // x(s) = x0 + s (x1 - x0)
+    x.col(i) = start.col(i) + s * (Vec3(x.col(i)) - start.col(i));
+    ++moved;
+  }
+  last_contact_stats_.ccd_hits = moved;
+}
+
+void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
+  const auto x = particles_.positions();
+  const auto radius = particles_.radii();
+  const auto inverse_mass = particles_.inverseMasses();
+  const std::size_t n = particles_.size();
+  const CollisionSettings& settings = collision_settings_;
+  const bool swept = settings.continuous;
+  const Real margin = contactMargin(settings);
+  ContactSink sink(ws.contacts, settings.max_contacts, dropped);
+
+  // Colliders first: a pile is held up from the ground, so its contacts come first in each pass.
+  if (!colliders_.empty()) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (inverse_mass[i] <= 0.0) continue;
+      const Vec3 xi = x.col(i);
+      const Real r = radius[i];
+      const auto index = static_cast<std::uint32_t>(i);
+      const std::uint32_t slot = particles_.idAt(i).index;
+      // The collider a swept test stopped this particle at gets a contact even when just touching.
+      const ContactWorkspace::ColliderHit* hit = nullptr;
+      if (swept && ws.collider_hit[i] >= 0 &&
+          ws.time_of_impact[i] == ws.collider_hits[ws.collider_hit[i]].time) {
+        hit = &ws.collider_hits[ws.collider_hit[i]];
+      }
+      const auto add = [&](const std::optional<ShapeContact>& shape, const ColliderId id,
+                           const Material& material) {
+        if (hit && hit->collider == id) {
+          // Stopped at its time of impact: touching, whatever rounding says.
+          const ShapeContact touching{shape ? shape->normal : hit->normal,
+                                      shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
+          sink.push(colliderContact(index, slot, id, touching, material));
+        } else if (shape) {
+          sink.push(colliderContact(index, slot, id, *shape, material));
+        }
+      };
+      for (const PlaneCollider& c : colliders_.planes)
+        add(sphereVsPlane(xi, r, c, margin), c.id, c.material);
+      for (const SphereCollider& c : colliders_.spheres) {
+        add(sphereVsSphere(xi, r, c.center, c.radius, margin), c.id, c.material);
+      }
+      for (const BoxCollider& c : colliders_.boxes)
+        add(sphereVsBox(xi, r, c, margin), c.id, c.material);
+      for (const CapsuleCollider& c : colliders_.capsules) {
+        add(sphereVsCapsule(xi, r, c, margin), c.id, c.material);
+      }
+    }
+  }
+
+  if (settings.particle_collisions) {
+    const bool filter = !settings.collide_linked && !ws.linked_pairs.empty();
+    const bool custom_materials = custom_material_count_ > 0;
+    for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
+      const auto [a, b] = ws.pairs[k];
+      if (inverse_mass[a] <= 0.0 && inverse_mass[b] <= 0.0) continue;
+      if (filter &&
+          std::binary_search(ws.linked_pairs.begin(), ws.linked_pairs.end(), pairKey(a, b))) {
+        continue;
+      }
+      const Vec3 d = Vec3(x.col(a)) - x.col(b);
+      const Real distance = d.norm();
+      const Real reach = radius[a] + radius[b];
+      Real penetration = reach - distance;
+      if (!(penetration > -margin)) {
+        // A swept pair stopped at its time of impact touches; one stopped earlier by something
+        // else is left to the next substep.
+        const bool touching = swept && ws.pair_is_swept[k] && penetration > -1e-9 * reach;
+        if (!touching) continue;
+        penetration = std::max(penetration, Real{0.0});
+      }
+      Contact c;
+      c.a = a;
+      c.b = b;
+      c.normal = distance > 1e-12 ? Vec3(d / distance) : Vec3::UnitZ();
+      c.penetration = penetration;
+      c.key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
+      if (custom_materials) {
+        const Material ma = particleMaterial(a);
+        const Material mb = particleMaterial(b);
+        c.restitution = 0.5 * (ma.restitution + mb.restitution);
+        c.friction = std::sqrt(ma.friction * mb.friction);
+      } else {
+        c.restitution = settings.particle_restitution;
+        c.friction = settings.particle_friction;
+      }
+      sink.push(c);
+    }
+  }
+
+  const auto dense = [this](const ParticleId id) {
+    return static_cast<std::uint32_t>(particles_.denseIndexUnchecked(id));
+  };
+  const auto link = [&](const ContactKind kind, const GeneratorId id, const std::uint32_t a,
+                        const std::uint32_t b, const Vec3& anchor, const Real length,
+                        const Real restitution) {
+    // Every link is listed: a rod holds either way, and a slack cable is checked again after
+    // the position passes, which may stretch it.
+    Contact c;
+    c.a = a;
+    c.b = b;
+    c.kind = kind;
+    c.anchor = anchor;
+    c.length = length;
+    c.restitution = restitution;
+    c.key = linkContactKey(id);
+    sink.push(c);
+  };
+  for (const Cable& l : links_.cables) {
+    link(ContactKind::kCable, l.id, dense(l.a), dense(l.b), Vec3::Zero(), l.max_length,
+         l.restitution);
+  }
+  for (const Rod& l : links_.rods) {
+    link(ContactKind::kRod, l.id, dense(l.a), dense(l.b), Vec3::Zero(), l.length, 0.0);
+  }
+  for (const AnchoredCable& l : links_.anchored_cables) {
+    link(ContactKind::kCable, l.id, dense(l.particle), kNoParticle, l.anchor, l.max_length,
+         l.restitution);
+  }
+  for (const AnchoredRod& l : links_.anchored_rods) {
+    link(ContactKind::kRod, l.id, dense(l.particle), kNoParticle, l.anchor, l.length, 0.0);
+  }
+}
+
+void World::resolveContacts(const Real h) {
+  if (!contact_workspace_) contact_workspace_ = std::make_unique<ContactWorkspace>();
+  ContactWorkspace& ws = *contact_workspace_;
+  const CollisionSettings& settings = collision_settings_;
+  const std::size_t n = particles_.size();
+  const auto x = particles_.positions();
+  const auto radius = particles_.radii();
+  const bool swept = settings.continuous && static_cast<std::size_t>(ws.substep_start.cols()) == n;
+  last_contact_stats_ = ContactStats{};
+
+  ws.pairs.clear();
+  if (settings.particle_collisions && n > 1) {
+    // Boxes around each sphere; with swept tests, around its whole path over the substep.
+    ws.box_lo.resize(3, static_cast<Eigen::Index>(n));
+    ws.box_hi.resize(3, static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 r = Vec3::Constant(radius[i] + 0.5 * contactMargin(settings));
+      Vec3 lo = x.col(i);
+      Vec3 hi = lo;
+      if (swept) {
+        lo = lo.cwiseMin(ws.substep_start.col(i));
+        hi = hi.cwiseMax(ws.substep_start.col(i));
+      }
+      ws.box_lo.col(i) = lo - r;
+      ws.box_hi.col(i) = hi + r;
+    }
+    ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
+    if (!settings.collide_linked) buildLinkedPairs(ws);
+  }
+  if (swept) sweepParticles(ws);
+
+  ws.contacts.clear();
+  generateContacts(ws, dropped_this_step_);
+  if (config_.gravity.squaredNorm() > 0.0 && ws.contacts.size() > 1) {
+    // Bottom up along gravity (colliders first): a forward pass carries the support from the
+    // ground to the top of a pile.
+    const Vec3 up = -config_.gravity.normalized();
+    ws.order.clear();
+    for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
+      const Contact& c = ws.contacts[k];
+      const Real height = c.b == kNoParticle ? -std::numeric_limits<Real>::infinity()
+                                             : std::min(up.dot(x.col(c.a)), up.dot(x.col(c.b)));
+      ws.order.emplace_back(height, static_cast<std::uint32_t>(k));
+    }
+    std::sort(ws.order.begin(), ws.order.end());
+    ws.sorted_contacts.clear();
+    for (const auto& entry : ws.order) ws.sorted_contacts.push_back(ws.contacts[entry.second]);
+    ws.contacts.swap(ws.sorted_contacts);
+  }
+
+  ws.resolver.resolve(ws.contacts, particles_.positions(), particles_.velocities(),
+                      particles_.inverseMasses(), acceleration_, h, settings, last_contact_stats_);
+  last_contact_stats_.contacts = ws.contacts.size();
+  last_contact_stats_.dropped = dropped_this_step_;
+
+  const auto& touched = ws.resolver.touched();
+  if (touched.empty() && last_contact_stats_.ccd_hits == 0) return;
+  // The integrators' caches must follow what the resolver changed.
+  acceleration_valid_ = false;
+  if (config_.integrator == Integrator::kPositionVerlet && verlet_history_h_ == h) {
+    auto previous = particles_.previousPositions();
+    const auto v = particles_.velocities();
+    const auto xs = particles_.positions();
+    // x_prev = x - v h + a h^2 / 2, as when the history is first seeded.
+    const auto reseed = [&](const std::size_t i) {
+      previous.col(i) = xs.col(i) - v.col(i) * h + 0.5 * h * h * acceleration_.col(i);
+    };
+    for (const std::uint32_t i : touched) reseed(i);
+    if (swept) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (ws.time_of_impact[i] < 1.0) reseed(i);
+      }
+    }
+  }
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim
