@@ -41,11 +41,13 @@ Result<GeneratorId> addAnchoredLink(engine::World& world, const ParticleId a,
     case LinkType::kStiffSpring:
       return world.addStiffSpring(engine::StiffSpring{a, r.anchor, r.stiffness, r.damping});
     case LinkType::kCable:
+      return world.addAnchoredCable(engine::AnchoredCable{
+          a, r.anchor, lengthOrDistance(r.max_length, distance), r.restitution});
     case LinkType::kRod:
-      break;
+      return world.addAnchoredRod(
+          engine::AnchoredRod{a, r.anchor, lengthOrDistance(r.length, distance)});
   }
-  return Status::error(std::string(linkTypeName(r.type)) +
-                       " links need the contact engine, which this build does not have");
+  return Status::error("unknown link type");
 }
 
 Result<GeneratorId> addParticleLink(engine::World& world, const ParticleId a, const ParticleId b,
@@ -61,11 +63,12 @@ Result<GeneratorId> addParticleLink(engine::World& world, const ParticleId a, co
     case LinkType::kStiffSpring:
       return Status::error("a stiff_spring links a particle to an anchor, not to particle b");
     case LinkType::kCable:
+      return world.addCable(
+          engine::Cable{a, b, lengthOrDistance(r.max_length, distance), r.restitution});
     case LinkType::kRod:
-      break;
+      return world.addRod(engine::Rod{a, b, lengthOrDistance(r.length, distance)});
   }
-  return Status::error(std::string(linkTypeName(r.type)) +
-                       " links need the contact engine, which this build does not have");
+  return Status::error("unknown link type");
 }
 
 }  // namespace
@@ -121,9 +124,11 @@ Result<GeneratorId> addLink(engine::World& world, const LinkRequest& request) {
 
 bool isLink(const engine::World& world, const GeneratorId id) {
   const engine::ForceGenerators& g = world.generators();
+  const engine::Links& l = world.links();
   return containsId(g.springs, id) || containsId(g.anchored_springs, id) ||
          containsId(g.bungees, id) || containsId(g.anchored_bungees, id) ||
-         containsId(g.stiff_springs, id);
+         containsId(g.stiff_springs, id) || containsId(l.cables, id) || containsId(l.rods, id) ||
+         containsId(l.anchored_cables, id) || containsId(l.anchored_rods, id);
 }
 
 }  // namespace node

@@ -1,5 +1,6 @@
 #include "mass_aggregate_sim/node/markers.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
 
@@ -75,6 +76,7 @@ visualization_msgs::MarkerArray MarkerBuilder::build(const engine::World& world,
   const std::size_t first = out.markers.size();
   addParticles(world, stamp, out);
   addLinks(world, stamp, out);
+  addColliders(world, stamp, out);
 
   std::set<std::pair<std::string, int>> now;
   for (std::size_t i = first; i < out.markers.size(); ++i) {
@@ -158,7 +160,69 @@ void MarkerBuilder::addLinks(const engine::World& world, const ros::Time& stamp,
     const Vec3 p = at(s.particle);
     segment(p, s.anchor, springTension(p, s.anchor, s.stiffness, 0.0, false));
   }
+  // Constraint links carry no force the builder could show: a cable is red when taut (at its
+  // maximum length) and white when slack; a rod, which is always exact, is amber.
+  const auto cable = [&](const Vec3& a, const Vec3& b, const Real max_length) {
+    const bool taut = (a - b).norm() >= max_length * (1.0 - 1e-3);
+    segment(a, b, taut ? tension_scale_ : 0.0);
+  };
+  const auto rod = [&](const Vec3& a, const Vec3& b) {
+    lines.points.push_back(toPointMsg(a));
+    lines.points.push_back(toPointMsg(b));
+    lines.colors.push_back(color(1.0f, 0.75f, 0.2f));
+    lines.colors.push_back(color(1.0f, 0.75f, 0.2f));
+  };
+  const engine::Links& links = world.links();
+  for (const auto& c : links.cables) cable(at(c.a), at(c.b), c.max_length);
+  for (const auto& c : links.anchored_cables) cable(at(c.particle), c.anchor, c.max_length);
+  for (const auto& r : links.rods) rod(at(r.a), at(r.b));
+  for (const auto& r : links.anchored_rods) rod(at(r.particle), r.anchor);
   if (!lines.points.empty()) out.markers.push_back(std::move(lines));
+}
+
+void MarkerBuilder::addColliders(const engine::World& world, const ros::Time& stamp,
+                                 visualization_msgs::MarkerArray& out) const {
+  const engine::Colliders& colliders = world.colliders();
+  const std_msgs::ColorRGBA grey = color(0.6f, 0.6f, 0.65f, 0.6f);
+  // Each collider is its own marker(s): id = 4 * collider id + part.
+  const auto shape = [&](const engine::ColliderId id, const int part, const int type,
+                         const Vec3& center, const Eigen::Quaterniond& orientation,
+                         const Vec3& scale) {
+    Marker m = makeMarker("colliders", static_cast<int>(4 * id + part), type, stamp);
+    m.pose.position = toPointMsg(center);
+    m.pose.orientation.x = orientation.x();
+    m.pose.orientation.y = orientation.y();
+    m.pose.orientation.z = orientation.z();
+    m.pose.orientation.w = orientation.w();
+    m.scale.x = scale.x();
+    m.scale.y = scale.y();
+    m.scale.z = scale.z();
+    m.color = grey;
+    out.markers.push_back(m);
+  };
+  for (const auto& plane : colliders.planes) {
+    // A thin 40 m square through the point of the plane nearest the origin (normal.x = offset).
+    shape(plane.id, 0, Marker::CUBE, plane.normal * plane.offset,
+          Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), plane.normal), Vec3(40, 40, 0.01));
+  }
+  for (const auto& sphere : colliders.spheres) {
+    shape(sphere.id, 0, Marker::SPHERE, sphere.center, Eigen::Quaterniond::Identity(),
+          Vec3::Constant(2.0 * sphere.radius));
+  }
+  for (const auto& box : colliders.boxes) {
+    shape(box.id, 0, Marker::CUBE, box.center, box.orientation.normalized(),
+          2.0 * box.half_extents);
+  }
+  for (const auto& capsule : colliders.capsules) {
+    const Vec3 axis = capsule.b - capsule.a;
+    const Real d = 2.0 * capsule.radius;
+    shape(capsule.id, 0, Marker::CYLINDER, 0.5 * (capsule.a + capsule.b),
+          Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), axis), Vec3(d, d, axis.norm()));
+    shape(capsule.id, 1, Marker::SPHERE, capsule.a, Eigen::Quaterniond::Identity(),
+          Vec3::Constant(d));
+    shape(capsule.id, 2, Marker::SPHERE, capsule.b, Eigen::Quaterniond::Identity(),
+          Vec3::Constant(d));
+  }
 }
 
 }  // namespace node

@@ -112,6 +112,7 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
   commands_pub_ = nh_.advertise<Command>("commands", 100);
   if (params_.publish_clock)
     clock_pub_ = ros::NodeHandle().advertise<rosgraph_msgs::Clock>("/clock", 1);
+  publishColliderFrames();
   services_.push_back(nh_.advertiseService("spawn", &SimNode::onSpawn, this));
   services_.push_back(nh_.advertiseService("remove", &SimNode::onRemove, this));
   services_.push_back(nh_.advertiseService("set_state", &SimNode::onSetState, this));
@@ -430,6 +431,34 @@ void SimNode::publishClock() {
   clock_pub_.publish(clock);
 }
 
+void SimNode::publishColliderFrames() {
+  const engine::Colliders& colliders = sim_.world().colliders();
+  std::vector<geometry_msgs::TransformStamped> frames;
+  const auto frame = [&](const engine::ColliderId id, const Vec3& origin,
+                         const Eigen::Quaterniond& orientation) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = ros::Time(0);
+    t.header.frame_id = params_.frame_id;
+    t.child_frame_id = params_.frame_id + "/collider_" + std::to_string(id);
+    t.transform.translation = toVector3Msg(origin);
+    t.transform.rotation.x = orientation.x();
+    t.transform.rotation.y = orientation.y();
+    t.transform.rotation.z = orientation.z();
+    t.transform.rotation.w = orientation.w();
+    frames.push_back(t);
+  };
+  // Planes: z along the normal; capsules: z from a to b, origin at the middle.
+  for (const auto& c : colliders.planes) {
+    frame(c.id, c.normal * c.offset, Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.normal));
+  }
+  for (const auto& c : colliders.spheres) frame(c.id, c.center, Eigen::Quaterniond::Identity());
+  for (const auto& c : colliders.boxes) frame(c.id, c.center, c.orientation.normalized());
+  for (const auto& c : colliders.capsules) {
+    frame(c.id, 0.5 * (c.a + c.b), Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.b - c.a));
+  }
+  if (!frames.empty()) static_broadcaster_.sendTransform(frames);
+}
+
 void SimNode::publishTf(const ros::Time& stamp) {
   // tf2 drops a second transform with the same stamp (paused, or just after a reset).
   if (stamp <= last_tf_stamp_) return;
@@ -479,8 +508,8 @@ void SimNode::publishState(const Clock::time_point now) {
   stats.particles = world.particles().size();
   stats.force_generators = world.generators().size();
   stats.sustained_forces = sim_.sustainedForceCount();
-  stats.contacts = 0;
-  stats.resolver_iterations = 0;
+  stats.contacts = world.lastContactStats().contacts;
+  stats.resolver_iterations = static_cast<std::uint64_t>(world.lastContactStats().iterations);
   stats.kinetic_energy = world.kineticEnergy();
   stats.potential_energy = world.gravitationalEnergy() + world.springEnergy();
   stats.total_energy = stats.kinetic_energy + stats.potential_energy;

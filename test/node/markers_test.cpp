@@ -104,6 +104,38 @@ TEST(MarkersTest, LinksAreColouredByTension) {
   EXPECT_FLOAT_EQ(slack.b, 1.0f);
 }
 
+TEST(MarkersTest, CollidersAreDrawnAsTheirShapes) {
+  engine::World world;
+  ASSERT_TRUE(world.addPlane(engine::PlaneCollider{}).isOk());
+  engine::SphereCollider sphere;
+  sphere.center = Vec3(1, 2, 3);
+  sphere.radius = 0.5;
+  ASSERT_TRUE(world.addSphere(sphere).isOk());
+  engine::BoxCollider box;
+  box.half_extents = Vec3(1, 2, 3);
+  ASSERT_TRUE(world.addBox(box).isOk());
+  ASSERT_TRUE(world.addCapsule(engine::CapsuleCollider{}).isOk());
+  MarkerBuilder builder("world", 10.0);
+  const auto array = builder.build(world, ros::Time(1.0));
+  std::map<int, int> types;
+  for (const auto& m : array.markers) {
+    if (m.ns == "colliders") ++types[m.type];
+  }
+  EXPECT_EQ(types[Marker::CUBE], 2);      // plane and box
+  EXPECT_EQ(types[Marker::SPHERE], 3);    // sphere and the capsule's ends
+  EXPECT_EQ(types[Marker::CYLINDER], 1);  // the capsule's body
+  for (const auto& m : array.markers) {
+    if (m.ns == "colliders" && m.type == Marker::SPHERE && m.pose.position.x == 1.0) {
+      EXPECT_DOUBLE_EQ(m.scale.x, 1.0);
+      EXPECT_DOUBLE_EQ(m.pose.position.z, 3.0);
+    }
+    if (m.ns == "colliders" && m.type == Marker::CUBE && m.scale.y == 4.0) {
+      EXPECT_DOUBLE_EQ(m.scale.x, 2.0);
+      EXPECT_DOUBLE_EQ(m.scale.z, 6.0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

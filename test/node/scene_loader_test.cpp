@@ -257,6 +257,76 @@ TEST(SceneLoaderTest, ShippedScenesLoad) {
   }
 }
 
+TEST(SceneLoaderTest, CollidersCollisionsCablesAndRods) {
+  const auto loaded = load(R"(
+collisions: {particle_collisions: true, broadphase: uniform_grid, continuous: true,
+             particle_restitution: 0.25, particle_friction: 0.5, max_iterations: 12,
+             penetration_slop: 0.002, collide_linked: true, max_contacts: 500}
+colliders:
+  - {type: plane, normal: [0, 0, 2], offset: 0.5, restitution: 0.3, friction: 0.7}
+  - {type: sphere, center: [1, 2, 3], radius: 0.5}
+  - {type: box, center: [0, 0, 1], half_extents: [1, 2, 3], orientation: [0, 0, 0, 1]}
+  - {type: capsule, a: [0, 0, 0], b: [0, 0, 2], radius: 0.25}
+particles:
+  - {name: a, position: [0, 0, 5]}
+  - {name: b, position: [3, 0, 5]}
+links:
+  - {type: cable, a: a, b: b, max_length: 4, restitution: 0.5}
+  - {type: rod, a: a, b: b}
+  - {type: cable, a: a, anchor: [0, 0, 7]}
+  - {type: rod, a: b, anchor: [3, 0, 6], length: 1.5}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const engine::World& world = loaded.value().world;
+  const auto& c = world.collisionSettings();
+  EXPECT_TRUE(c.particle_collisions);
+  EXPECT_EQ(c.broadphase, engine::Broadphase::kUniformGrid);
+  EXPECT_TRUE(c.continuous);
+  EXPECT_DOUBLE_EQ(c.particle_restitution, 0.25);
+  EXPECT_DOUBLE_EQ(c.particle_friction, 0.5);
+  EXPECT_EQ(c.max_iterations, 12);
+  EXPECT_DOUBLE_EQ(c.penetration_slop, 0.002);
+  EXPECT_TRUE(c.collide_linked);
+  EXPECT_EQ(c.max_contacts, 500u);
+  const auto& colliders = world.colliders();
+  ASSERT_EQ(colliders.planes.size(), 1u);
+  EXPECT_TRUE(colliders.planes[0].normal.isApprox(Vec3::UnitZ()));
+  EXPECT_DOUBLE_EQ(colliders.planes[0].material.restitution, 0.3);
+  EXPECT_DOUBLE_EQ(colliders.planes[0].material.friction, 0.7);
+  ASSERT_EQ(colliders.spheres.size(), 1u);
+  EXPECT_EQ(colliders.spheres[0].center, Vec3(1, 2, 3));
+  ASSERT_EQ(colliders.boxes.size(), 1u);
+  EXPECT_EQ(colliders.boxes[0].half_extents, Vec3(1, 2, 3));
+  ASSERT_EQ(colliders.capsules.size(), 1u);
+  EXPECT_DOUBLE_EQ(colliders.capsules[0].radius, 0.25);
+  const auto& links = world.links();
+  ASSERT_EQ(links.cables.size(), 1u);
+  EXPECT_DOUBLE_EQ(links.cables[0].max_length, 4.0);
+  EXPECT_DOUBLE_EQ(links.cables[0].restitution, 0.5);
+  ASSERT_EQ(links.rods.size(), 1u);
+  EXPECT_DOUBLE_EQ(links.rods[0].length, 3.0);  // the distance at load time
+  ASSERT_EQ(links.anchored_cables.size(), 1u);
+  EXPECT_DOUBLE_EQ(links.anchored_cables[0].max_length, 2.0);
+  ASSERT_EQ(links.anchored_rods.size(), 1u);
+  EXPECT_DOUBLE_EQ(links.anchored_rods[0].length, 1.5);
+}
+
+TEST(SceneLoaderTest, BadCollidersAndCollisionsNameTheKey) {
+  expectError("{colliders: [{type: cone}]}", "scene.colliders[0].type", "unknown collider 'cone'");
+  expectError("{colliders: [{type: sphere, radius: -1}]}", "scene.colliders[0]", "radius");
+  expectError("{colliders: [{type: plane, normal: [0, 0, 0]}]}", "scene.colliders[0]", "normal");
+  expectError("{colliders: [{type: plane, restitution: 2}]}", "scene.colliders[0]", "restitution");
+  expectError("{colliders: [{type: box, orientation: [0, 0, 1]}]}",
+              "scene.colliders[0].orientation", "[x, y, z, w]");
+  expectError("{colliders: [{type: sphere, centre: [0, 0, 0]}]}", "scene.colliders[0].centre",
+              "unknown key");
+  expectError("{collisions: {broadphase: octree}}", "scene.collisions.broadphase",
+              "unknown broadphase 'octree'");
+  expectError("{collisions: {max_iterations: 0}}", "scene.collisions", "max_iterations");
+  expectError("{collisions: {particle_collisions: yes please}}",
+              "scene.collisions.particle_collisions", "true or false");
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

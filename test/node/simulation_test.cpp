@@ -256,6 +256,32 @@ TEST(SimulationTest, SameRequestsInTheSameOrderGiveTheSameHash) {
   EXPECT_EQ(run(), run());
 }
 
+TEST(SimulationTest, CablesAndRodsAreLinksToo) {
+  Simulation sim(makeScene(), SimulationLimits{});
+  LinkRequest rod;
+  rod.type = LinkType::kRod;
+  rod.a = byName("ball");
+  rod.b = byName("post");
+  const auto rod_id = sim.addLink(rod);
+  ASSERT_TRUE(rod_id.isOk()) << rod_id.message();
+  ASSERT_EQ(sim.world().links().rods.size(), 1u);
+  EXPECT_DOUBLE_EQ(sim.world().links().rods[0].length, 1.0);
+  LinkRequest cable;
+  cable.type = LinkType::kCable;
+  cable.a = byName("ball");
+  cable.anchor = Vec3(0, 0, 3);
+  cable.max_length = 2.5;
+  cable.restitution = 0.2;
+  const auto cable_id = sim.addLink(cable);
+  ASSERT_TRUE(cable_id.isOk()) << cable_id.message();
+  EXPECT_DOUBLE_EQ(sim.world().links().anchored_cables[0].max_length, 2.5);
+  cable.restitution = 3.0;
+  EXPECT_FALSE(sim.addLink(cable).isOk());
+  EXPECT_TRUE(sim.removeLink(*rod_id));
+  EXPECT_TRUE(sim.removeLink(*cable_id));
+  EXPECT_TRUE(sim.world().links().empty());
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

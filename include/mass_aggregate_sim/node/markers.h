@@ -14,8 +14,9 @@ namespace node {
 
 // Builds the RViz view of a world: particles as one SPHERE_LIST per radius (so 10,000 particles
 // stay a handful of markers), links as one LINE_LIST coloured by tension (blue compressed, white
-// slack, red stretched, saturating at tension_scale), colliders as their shapes. Remembers what it
-// published so a marker that disappears gets a DELETE, and starts with DELETEALL after restart().
+// slack, red stretched, saturating at tension_scale), colliders as their shapes (grey,
+// translucent). Remembers what it published so a marker that disappears gets a DELETE, and starts
+// with DELETEALL after restart().
 class MarkerBuilder {
  public:
   MarkerBuilder(std::string frame_id, double tension_scale);
@@ -29,6 +30,8 @@ class MarkerBuilder {
                     visualization_msgs::MarkerArray& out) const;
   void addLinks(const engine::World& world, const ros::Time& stamp,
                 visualization_msgs::MarkerArray& out) const;
+  void addColliders(const engine::World& world, const ros::Time& stamp,
+                    visualization_msgs::MarkerArray& out) const;
   visualization_msgs::Marker makeMarker(const std::string& ns, int id, int type,
                                         const ros::Time& stamp) const;
 

@@ -78,6 +78,8 @@ class SimNode {
   void publishClock();
   void publishState(Clock::time_point now);
   void publishTf(const ros::Time& stamp);
+  // One static frame per collider, <frame_id>/collider_<id>, published once.
+  void publishColliderFrames();
   ros::Time clockTime() const;
 
   NodeParams params_;
@@ -99,6 +101,7 @@ class SimNode {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
 
   // /clock = clock_offset_ + world time: a reset adds the time reached so far to the offset, so
   // the clock never goes back.
