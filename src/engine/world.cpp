@@ -485,6 +485,8 @@ std::uint64_t World::stateHash() const {
     hasher.add(v.col(i));
     if (config_.integrator == Integrator::kPositionVerlet) hasher.add(previous.col(i));
   }
+  // The impulses contacts and links carry into the next substep are state too.
+  if (contact_workspace_) contact_workspace_->resolver.addToHash(hasher);
   return hasher.value();
 }
 
