@@ -142,6 +142,7 @@ Status World::removeParticle(const ParticleId id) {
     --custom_material_count_;
   }
   const Status removed = particles_.remove(id);
+  if (contact_workspace_) contact_workspace_->resolver.clearWarmStart();
   invalidateCaches();
   return removed;
 }
@@ -300,6 +301,7 @@ void World::clear() {
   slot_has_material_.assign(slot_has_material_.size(), 0);
   custom_material_count_ = 0;
   last_contact_stats_ = ContactStats{};
+  if (contact_workspace_) contact_workspace_->resolver.clearWarmStart();
   time_origin_ = 0.0;
   steps_since_origin_ = 0;
   step_count_ = 0;
