@@ -12,27 +12,31 @@ namespace {
 class NearestHit {
  public:
   NearestHit(const Vec3& origin, const Vec3& direction, const Real max_distance)
-      : origin_(origin), direction_(direction), max_distance_(max_distance) {}
-  Real reach() const { return best_ ? best_->distance : max_distance_; }
+      : origin_(origin), direction_(direction), best_distance_(max_distance) {}
+  Real reach() const { return best_distance_; }
   void offer(const std::optional<RayShapeHit>& hit, const bool particle, const ParticleId id,
              const ColliderId collider) {
-    if (!hit || (best_ && hit->t >= best_->distance)) return;
-    RayHit result;
-    result.hit_particle = particle;
-    result.particle = id;
-    result.collider = collider;
-    result.distance = hit->t;
-    result.point = origin_ + hit->t * direction_;
-    result.normal = hit->normal;
-    best_ = result;
+    if (!hit || (found_ && hit->t >= best_distance_)) return;
+    best_.hit_particle = particle;
+    best_.particle = id;
+    best_.collider = collider;
+    best_.distance = hit->t;
+    best_.point = origin_ + hit->t * direction_;
+    best_.normal = hit->normal;
+    best_distance_ = hit->t;
+    found_ = true;
   }
-  const std::optional<RayHit>& best() const { return best_; }
+  std::optional<RayHit> best() const {
+    if (!found_) return std::nullopt;
+    return best_;
+  }
 
  private:
   Vec3 origin_;
   Vec3 direction_;
-  Real max_distance_;
-  std::optional<RayHit> best_;
+  Real best_distance_;  // max_distance until something is hit
+  bool found_ = false;
+  RayHit best_;
 };
 
 }  // namespace

@@ -157,6 +157,7 @@ Status World::removeParticle(const ParticleId id) {
     --custom_material_count_;
   }
   const Status removed = particles_.remove(id);
+  if (contact_workspace_) contact_workspace_->resolver.clearWarmStart();
   invalidateCaches();
   return removed;
 }
@@ -315,6 +316,7 @@ void World::clear() {
   slot_has_material_.assign(slot_has_material_.size(), 0);
   custom_material_count_ = 0;
   last_contact_stats_ = ContactStats{};
+  if (contact_workspace_) contact_workspace_->resolver.clearWarmStart();
   time_origin_ = 0.0;
   steps_since_origin_ = 0;
   step_count_ = 0;
@@ -649,6 +651,8 @@ std::uint64_t World::stateHash() const {
     hasher.add(v.col(i));
     if (config_.integrator == Integrator::kPositionVerlet) hasher.add(previous.col(i));
   }
+  // The impulses contacts and links carry into the next substep are state too.
+  if (contact_workspace_) contact_workspace_->resolver.addToHash(hasher);
   return hasher.value();
 }
 

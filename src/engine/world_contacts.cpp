@@ -351,7 +351,9 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   const auto inverse_mass = particles_.inverseMasses();
   const std::size_t n = particles_.size();
   const CollisionSettings& settings = collision_settings_;
-  const bool swept = settings.continuous;
+  // Swept results exist only when sweepParticles() ran this substep.
+  const bool swept = settings.continuous && ws.time_of_impact.size() == n &&
+                     ws.collider_hit.size() == n && ws.pair_is_swept.size() == ws.pairs.size();
   const Real margin = contactMargin(settings);
   ContactSink sink(ws.contacts, settings.max_contacts, dropped);
 
@@ -496,7 +498,13 @@ void World::resolveContacts(const Real h) {
     ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
     if (!settings.collide_linked) buildLinkedPairs(ws);
   }
-  if (swept) sweepParticles(ws);
+  if (swept) {
+    sweepParticles(ws);
+  } else {
+    ws.time_of_impact.clear();
+    ws.collider_hit.clear();
+    ws.pair_is_swept.clear();
+  }
 
   ws.contacts.clear();
   generateContacts(ws, dropped_this_step_);

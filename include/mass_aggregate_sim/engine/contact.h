@@ -43,7 +43,7 @@ inline std::uint64_t pairContactKey(std::uint32_t slot_a, std::uint32_t slot_b) 
   return (std::uint64_t{slot_a} << 31) ^ slot_b;
 }
 inline std::uint64_t colliderContactKey(const std::uint32_t slot, const std::uint32_t collider) {
-  return (std::uint64_t{1} << 62) | (std::uint64_t{slot} << 31) ^ collider;
+  return (std::uint64_t{1} << 62) | ((std::uint64_t{slot} << 31) ^ collider);
 }
 inline std::uint64_t linkContactKey(const std::uint32_t link) {
   return (std::uint64_t{2} << 62) | link;

@@ -6,6 +6,7 @@
 
 #include "mass_aggregate_sim/engine/collision_settings.h"
 #include "mass_aggregate_sim/engine/contact.h"
+#include "mass_aggregate_sim/engine/state_hash.h"
 #include "mass_aggregate_sim/engine/types.h"
 
 namespace mass_aggregate_sim {
@@ -37,6 +38,15 @@ class ContactResolver {
                Real h, const CollisionSettings& settings, ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
+  // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
+  void clearWarmStart() { warm_impulses_.clear(); }
+  // Adds the impulses kept for warm starting the next substep (part of the world's state).
+  void addToHash(StateHasher& hasher) const {
+    for (const auto& [key, impulse] : warm_impulses_) {
+      hasher.add(key);
+      hasher.add(impulse);
+    }
+  }
 
  private:
   void touch(std::uint32_t i);
