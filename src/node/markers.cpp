@@ -205,6 +205,8 @@ void MarkerBuilder::addColliders(const engine::World& world, const ros::Time& st
     // origin (normal.x = offset).
     shape(plane.id, 0, Marker::CUBE, plane.normal * (plane.offset - 0.005),
           Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), plane.normal), Vec3(40, 40, 0.01));
+    // Lighter than the other shapes: seen at a grazing angle it would vanish into the background.
+    out.markers.back().color = color(0.9f, 0.9f, 0.95f, 1.0f);
   }
   for (const auto& sphere : colliders.spheres) {
     shape(sphere.id, 0, Marker::SPHERE, sphere.center, Eigen::Quaterniond::Identity(),
