@@ -483,11 +483,15 @@ void SimNode::publishState(const Clock::time_point now) {
   const engine::World& world = sim_.world();
   const ros::Time stamp = clockTime();
 
-  ParticleArray particles;
-  particles.header.stamp = stamp;
-  particles.header.frame_id = params_.frame_id;
-  fillParticleArray(world, particles);
-  particles_pub_.publish(particles);
+  // Building a 10,000-particle message costs time in this (the stepping) thread: only when
+  // someone listens.
+  if (particles_pub_.getNumSubscribers() > 0) {
+    ParticleArray particles;
+    particles.header.stamp = stamp;
+    particles.header.frame_id = params_.frame_id;
+    fillParticleArray(world, particles);
+    particles_pub_.publish(particles);
+  }
 
   if (markers_pub_.getNumSubscribers() > 0) markers_pub_.publish(markers_.build(world, stamp));
   if (params_.publish_tf) publishTf(stamp);
@@ -505,6 +509,7 @@ void SimNode::publishState(const Clock::time_point now) {
   stats.step_cost_mean = window_steps_ > 0 ? window_step_cost_sum_ / window_steps_ : 0.0;
   stats.step_cost_max = window_step_cost_max_;
   stats.overruns = overruns_;
+  stats.publish_cost = last_publish_cost_;
   stats.particles = world.particles().size();
   stats.force_generators = world.generators().size();
   stats.sustained_forces = sim_.sustainedForceCount();
@@ -554,6 +559,7 @@ void SimNode::run() {
     Clock::time_point now = Clock::now();
     if (now >= next_publish) {
       publishState(now);
+      last_publish_cost_ = std::chrono::duration<double>(Clock::now() - now).count();
       next_publish += publish_period;
       if (next_publish < now) next_publish = now + publish_period;
     }

@@ -109,6 +109,7 @@ class SimNode {
   ros::Time last_tf_stamp_;
   std::uint64_t commands_applied_ = 0;
   std::uint64_t overruns_ = 0;
+  double last_publish_cost_ = 0.0;  // s of wall time the last publishState took
   // Per publish window, for the real-time factor and the step cost.
   Clock::time_point window_start_;
   double window_sim_time_ = 0.0;
