@@ -9,8 +9,6 @@ namespace mass_aggregate_sim {
 namespace node {
 namespace {
 
-using engine::Real;
-using engine::Vec3;
 using XmlRpc::XmlRpcValue;
 
 std::string indexed(const std::string& key, const int i) {
