@@ -45,13 +45,14 @@ def main():
         return 1
     first, last = window[0], window[-1]
     sim = last.time - first.time
-    elapsed = (last.header.stamp - first.header.stamp).to_sec()
     cost = sum(s.step_cost_mean for s in window[1:]) / (len(window) - 1)
+    publish = sum(s.publish_cost for s in window[1:]) / (len(window) - 1)
     print('particles %d, window %.1f s wall: real-time factor %.3f (sim %.2f s), step cost mean '
-          '%.3f ms (max %.3f ms), overruns %d, contacts %d, iterations %d, markers %.1f Hz '
-          '(%d points)'
+          '%.3f ms (max %.3f ms), publish cost mean %.3f ms, overruns %d, contacts %d, '
+          'iterations %d, markers %.1f Hz (%d points)'
           % (last.particles, wall, sim / wall, sim, 1e3 * cost,
-             1e3 * max(s.step_cost_max for s in window), last.overruns - first.overruns,
+             1e3 * max(s.step_cost_max for s in window), 1e3 * publish,
+             last.overruns - first.overruns,
              last.contacts, last.resolver_iterations, markers['count'] / wall,
              markers['points']))
     return 0

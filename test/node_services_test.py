@@ -203,6 +203,31 @@ class NodeServicesTest(unittest.TestCase):
         spheres = [m for m in resets[0].markers if m.ns == 'particles']
         self.assertEqual(sum(len(m.points) for m in spheres), 1)
 
+    def test_collider_has_a_static_frame(self):
+        buffer = tf2_ros.Buffer()
+        listener = tf2_ros.TransformListener(buffer)
+        t = buffer.lookup_transform('world', 'world/collider_1', rospy.Time(0),
+                                    rospy.Duration(5.0))
+        del listener
+        p = t.transform.translation
+        self.assertEqual((p.x, p.y, p.z), (0.0, 50.0, 0.0))
+
+    def test_cables_and_rods_through_the_service(self):
+        a = self.spawn_one(name='ca', x=(0.0, 0.0, 5.0))
+        b = self.spawn_one(name='cb', x=(0.0, 0.0, 4.0))
+        rod = self.sim.add_link(AddLinkRequest(type='rod', a=a, b=b, length=-1.0))
+        self.assertTrue(rod.success, rod.message)
+        cable = self.sim.add_link(AddLinkRequest(type='cable', a=a, to_anchor=True,
+                                                 anchor=vec(0.0, 0.0, 6.0), max_length=1.0))
+        self.assertTrue(cable.success, cable.message)
+        self.assertTrue(self.sim.step(120).success)
+        # Hanging: a stays 1 m below the anchor, b 1 m below a (within the resolver's tolerance).
+        pa, pb = self.sim.particle(a), self.sim.particle(b)
+        self.assertAlmostEqual(pa.position.z, 5.0, delta=1e-3)
+        self.assertAlmostEqual(pa.position.z - pb.position.z, 1.0, delta=1e-3)
+        self.assertTrue(self.sim.remove_link(rod.link_id).success)
+        self.assertTrue(self.sim.remove_link(cable.link_id).success)
+
     def test_links_are_added_and_removed(self):
         a = self.spawn_one(name='la', x=(0.0, 0.0, 5.0))
         b = self.spawn_one(name='lb', x=(1.0, 0.0, 5.0))

@@ -183,7 +183,7 @@ void MarkerBuilder::addLinks(const engine::World& world, const ros::Time& stamp,
 void MarkerBuilder::addColliders(const engine::World& world, const ros::Time& stamp,
                                  visualization_msgs::MarkerArray& out) const {
   const engine::Colliders& colliders = world.colliders();
-  const std_msgs::ColorRGBA grey = color(0.6f, 0.6f, 0.65f, 0.6f);
+  const std_msgs::ColorRGBA grey = color(0.5f, 0.52f, 0.55f, 1.0f);
   // Each collider is its own marker(s): id = 4 * collider id + part.
   const auto shape = [&](const engine::ColliderId id, const int part, const int type,
                          const Vec3& center, const Eigen::Quaterniond& orientation,
@@ -201,9 +201,12 @@ void MarkerBuilder::addColliders(const engine::World& world, const ros::Time& st
     out.markers.push_back(m);
   };
   for (const auto& plane : colliders.planes) {
-    // A thin 40 m square through the point of the plane nearest the origin (normal.x = offset).
-    shape(plane.id, 0, Marker::CUBE, plane.normal * plane.offset,
+    // A 40 m square slab whose top face is the plane, centred on the plane's point nearest the
+    // origin (normal.x = offset).
+    shape(plane.id, 0, Marker::CUBE, plane.normal * (plane.offset - 0.005),
           Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), plane.normal), Vec3(40, 40, 0.01));
+    // Lighter than the other shapes: seen at a grazing angle it would vanish into the background.
+    out.markers.back().color = color(0.9f, 0.9f, 0.95f, 1.0f);
   }
   for (const auto& sphere : colliders.spheres) {
     shape(sphere.id, 0, Marker::SPHERE, sphere.center, Eigen::Quaterniond::Identity(),

@@ -1,6 +1,7 @@
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
 
 #include <cmath>
+#include <cstdlib>
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -64,6 +65,15 @@ engine::Real readReal(XmlRpcValue& value, const std::string& key) {
     result = static_cast<double>(value);
   } else if (value.getType() == XmlRpcValue::TypeInt) {
     result = static_cast<int>(value);
+  } else if (value.getType() == XmlRpcValue::TypeString) {
+    // rosparam reads YAML 1.1, where 1.0e6 and 1e+6 are strings: only 1.0e+6 is a number.
+    const std::string text = static_cast<std::string>(value);
+    char* end = nullptr;
+    std::strtod(text.c_str(), &end);
+    const bool numeric = !text.empty() && end == text.c_str() + text.size();
+    throw ParamError(key,
+                     "expected a number, got the string '" + text + "'" +
+                         (numeric ? " (YAML 1.1 exponents need a dot and a sign: 1.0e+6)" : ""));
   } else {
     throw ParamError(key, "expected a number, got " + typeName(value));
   }

@@ -153,7 +153,7 @@ particles:
 links:
   - {type: bungee, a: a, b: b, stiffness: 10, rest_length: 1}
   - {type: spring, a: a, anchor: [0, 0, 5], stiffness: 3}
-  - {type: stiff_spring, a: b, anchor: [0, 0, 3], stiffness: 1.0e6, damping: 2}
+  - {type: stiff_spring, a: b, anchor: [0, 0, 3], stiffness: 1.0e+6, damping: 2}
 )");
   ASSERT_TRUE(loaded.isOk()) << loaded.message();
   const auto& g = loaded.value().world.generators();
@@ -196,6 +196,8 @@ TEST(SceneLoaderTest, BadScenesNameTheKeyAndTheReason) {
   expectError("{particles: [{mass: 1}]}", "scene.particles[0].position", "is required");
   expectError("{particles: [{position: [0, 0, 0], damping: 1.5}]}", "scene.particles[0].damping",
               "[0, 1]");
+  expectError("{particles: [{position: [0, 0, 0], mass: 1.0e6}]}", "scene.particles[0].mass",
+              "string '1.0e6' (YAML 1.1 exponents need a dot and a sign: 1.0e+6)");
   expectError("{gravity: [0, 0, .inf]}", "scene.gravity[2]", "finite");
   expectError("{integrator: leapfrog}", "scene.integrator", "unknown integrator 'leapfrog'");
   expectError("{rate: 0}", "scene.rate", "must be in (0, 100000]");

@@ -282,6 +282,40 @@ TEST(SimulationTest, CablesAndRodsAreLinksToo) {
   EXPECT_TRUE(sim.world().links().empty());
 }
 
+// Reset copies the loaded world back: colliders, links and contact settings included, so the
+// same steps after a reset give the same state as after the start.
+TEST(SimulationTest, ResetRestoresContactsAndRepeatsBitForBit) {
+  engine::WorldConfig config;
+  config.dt = 0.01;
+  config.gravity = Vec3(0, 0, -9.81);
+  engine::World scene(config);
+  engine::CollisionSettings settings;
+  settings.particle_collisions = true;
+  ASSERT_TRUE(scene.setCollisionSettings(settings));
+  ASSERT_TRUE(scene.addPlane(engine::PlaneCollider{}).isOk());
+  std::vector<ParticleId> ids;
+  for (int i = 0; i < 27; ++i) {
+    ParticleSpec spec;
+    spec.position = Vec3(0.21 * (i % 3), 0.21 * ((i / 3) % 3), 0.3 + 0.21 * (i / 9));
+    ids.push_back(*scene.addParticle(spec));
+  }
+  ASSERT_TRUE(
+      scene.addAnchoredCable(engine::AnchoredCable{ids[26], Vec3(0, 0, 2), 1.5, 0.0}).isOk());
+  Simulation sim(scene, SimulationLimits{});
+  ASSERT_TRUE(sim.stepMany(60));
+  const auto first = sim.world().stateHash();
+  EXPECT_GT(sim.world().lastContactStats().contacts, 0u);
+  sim.reset();
+  EXPECT_EQ(sim.world().colliders().size(), 1u);
+  EXPECT_EQ(sim.world().links().size(), 1u);
+  EXPECT_TRUE(sim.world().collisionSettings().particle_collisions);
+  ASSERT_TRUE(sim.stepMany(60));
+  EXPECT_EQ(sim.world().stateHash(), first);
+  Simulation fresh(scene, SimulationLimits{});
+  ASSERT_TRUE(fresh.stepMany(60));
+  EXPECT_EQ(fresh.world().stateHash(), first);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <regex>
 #include <string>
 
 namespace mass_aggregate_sim {
@@ -22,20 +23,14 @@ inline XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node) {
     const std::string text = node.Scalar();
     if (node.Tag() == "!") return XmlRpc::XmlRpcValue(text);  // quoted: always a string
     if (text == "true" || text == "false") return XmlRpc::XmlRpcValue(text == "true");
-    try {
-      std::size_t used = 0;
-      const long long integer = std::stoll(text, &used);
-      if (used == text.size()) return XmlRpc::XmlRpcValue(static_cast<int>(integer));
-    } catch (const std::exception&) {
-    }
+    // The YAML 1.1 number forms that rosparam's loader (PyYAML) accepts: "1.0e6" and "1e+6"
+    // are strings there, only "1.0e+6" is a float.
+    static const std::regex integer("[-+]?(0|[1-9][0-9]*)");
+    static const std::regex real("[-+]?([0-9]+\\.[0-9]*|\\.[0-9]+)([eE][-+][0-9]+)?");
+    if (std::regex_match(text, integer)) return XmlRpc::XmlRpcValue(std::stoi(text));
+    if (std::regex_match(text, real)) return XmlRpc::XmlRpcValue(std::stod(text));
     if (text == ".nan" || text == ".NaN") return XmlRpc::XmlRpcValue(std::nan(""));
     if (text == ".inf" || text == ".Inf") return XmlRpc::XmlRpcValue(HUGE_VAL);
-    try {
-      std::size_t used = 0;
-      const double real = std::stod(text, &used);
-      if (used == text.size()) return XmlRpc::XmlRpcValue(real);
-    } catch (const std::exception&) {
-    }
     return XmlRpc::XmlRpcValue(text);
   }
   return value;

@@ -21,23 +21,13 @@
 #include "mass_aggregate_sim/Spawn.h"
 #include "mass_aggregate_sim/Step.h"
 #include "mass_aggregate_sim/node/markers.h"
+#include "mass_aggregate_sim/node/node_params.h"
 #include "mass_aggregate_sim/node/request_queue.h"
 #include "mass_aggregate_sim/node/scene_loader.h"
 #include "mass_aggregate_sim/node/simulation.h"
 
 namespace mass_aggregate_sim {
 namespace node {
-
-struct NodeParams {
-  double publish_rate = 30.0;  // Hz, wall
-  std::string frame_id = "world";
-  bool paused = false;
-  bool publish_clock = false;
-  bool publish_tf = true;
-  double default_radius = 0.1;  // m
-  double tension_scale = 10.0;  // N, link colour saturation
-  SimulationLimits limits;
-};
 
 // The ROS adapter. Threading: run() is the one thread that owns the world; it wakes on a
 // fixed-rate wall schedule, applies the queued requests (RequestQueue) at the step boundary,
@@ -109,6 +99,7 @@ class SimNode {
   ros::Time last_tf_stamp_;
   std::uint64_t commands_applied_ = 0;
   std::uint64_t overruns_ = 0;
+  double last_publish_cost_ = 0.0;  // s of wall time the last publishState took
   // Per publish window, for the real-time factor and the step cost.
   Clock::time_point window_start_;
   double window_sim_time_ = 0.0;
@@ -116,10 +107,6 @@ class SimNode {
   double window_step_cost_max_ = 0.0;
   std::uint64_t window_steps_ = 0;
 };
-
-// Reads the node parameters and the scene; the error names the parameter and the reason.
-engine::Result<NodeParams> readNodeParams(ros::NodeHandle& private_nh);
-engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, std::size_t max_particles);
 
 }  // namespace node
 }  // namespace mass_aggregate_sim

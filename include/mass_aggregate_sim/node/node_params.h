@@ -1,0 +1,33 @@
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <cstddef>
+#include <string>
+
+#include "mass_aggregate_sim/engine/status.h"
+#include "mass_aggregate_sim/node/scene_loader.h"
+#include "mass_aggregate_sim/node/simulation.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+
+struct NodeParams {
+  double publish_rate = 30.0;  // Hz, wall
+  std::string frame_id = "world";
+  bool paused = false;
+  bool publish_clock = false;
+  bool publish_tf = true;
+  double default_radius = 0.1;  // m
+  double tension_scale = 10.0;  // N, link colour saturation
+  SimulationLimits limits;
+};
+
+// Reads the node parameters (~publish_rate, ~frame_id, ...); the error names the parameter.
+engine::Result<NodeParams> readNodeParams(ros::NodeHandle& private_nh);
+// Reads ~scene with ~rate, ~substeps, ~integrator and ~gravity as overrides; the error names the
+// key and the reason.
+engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, std::size_t max_particles);
+
+}  // namespace node
+}  // namespace mass_aggregate_sim
