@@ -132,12 +132,26 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
   const auto separating = [&](const Contact& c) {
     return (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
   };
+  // Contacts mostly come in the order of their keys, so each lookup starts where the last one
+  // ended: everything before `hint` is below the last key, hence below any key not smaller.
+  const auto key_below = [](const std::pair<std::uint64_t, Real>& entry, const std::uint64_t key) {
+    return entry.first < key;
+  };
+  auto hint = warm_impulses_.begin();
+  std::uint64_t hint_key = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const Contact& c = contacts[k];
     if (!velocity_active_[k]) continue;
-    const auto it = std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), c.key,
-                                     [](const std::pair<std::uint64_t, Real>& entry,
-                                        std::uint64_t key) { return entry.first < key; });
+    if (c.key < hint_key) hint = warm_impulses_.begin();
+    auto it = hint;
+    for (int probe = 0; probe < 4 && it != warm_impulses_.end() && it->first < c.key; ++probe) {
+      ++it;
+    }
+    if (it != warm_impulses_.end() && it->first < c.key) {
+      it = std::lower_bound(it, warm_impulses_.end(), c.key, key_below);
+    }
+    hint = it;
+    hint_key = c.key;
     const Real previous = (it != warm_impulses_.end() && it->first == c.key) ? it->second : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
     // passes converge, so a bounce must not be re-evaluated from a half-solved state). A contact
@@ -214,7 +228,9 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
       next_warm_impulses_.emplace_back(contacts[k].key, total_[k]);
     }
   }
-  std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end());
+  if (!std::is_sorted(next_warm_impulses_.begin(), next_warm_impulses_.end())) {
+    std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end());
+  }
   warm_impulses_.swap(next_warm_impulses_);
   return passes;
 }

@@ -1,5 +1,6 @@
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mass_aggregate_sim {
@@ -12,16 +13,15 @@ constexpr Real kMinLength = 1e-12;
 // on raw columns so the hot loop has no temporaries; va, vb are read only when c != 0.
 // With d = x_a - x_b, l = |d|, n = d / l: F_a = -(k (l - L) + c (v_a - v_b).n) n.
 // `pull_only` makes it a bungee: nothing while l <= L. Returns false when there is no force.
-inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Real* vb,
-                        const Real stiffness, const Real rest_length, const Real damping,
-                        const bool pull_only, Real* force) {
-  const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
-  const Real length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+// Takes l and 1/l computed by the caller (singly or a block at a time).
+inline bool springForceFromLength(const Real* d, const Real length, const Real inverse_length,
+                                  const Real* va, const Real* vb, const Real stiffness,
+                                  const Real rest_length, const Real damping, const bool pull_only,
+                                  Real* force) {
   if (length < kMinLength) return false;
   const Real extension = length - rest_length;
   if (pull_only && extension <= 0.0) return false;
-  // One division instead of three: n = d * (1/l) differs from d / l only in the last bit.
-  const Real inverse_length = 1.0 / length;
+  // n = d * (1/l) differs from d / l only in the last bit, and costs one division, not three.
   const Real n[3] = {d[0] * inverse_length, d[1] * inverse_length, d[2] * inverse_length};
   Real damping_force = 0.0;
   if (damping != 0.0) {
@@ -33,6 +33,16 @@ inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Re
   force[1] = magnitude * n[1];
   force[2] = magnitude * n[2];
   return true;
+}
+
+inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Real* vb,
+                        const Real stiffness, const Real rest_length, const Real damping,
+                        const bool pull_only, Real* force) {
+  const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+  const Real length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (length < kMinLength) return false;
+  return springForceFromLength(d, length, 1.0 / length, va, vb, stiffness, rest_length, damping,
+                               pull_only, force);
 }
 
 // Pointer to column i of a 3 x N array that may have an outer stride.
@@ -61,6 +71,80 @@ void accumulatePairForces(const std::vector<Pair>& pairs, const ParticleStore& p
       fb[c] -= f[c];
     }
   }
+}
+
+// Dense springs a block at a time: gather d = x_a - x_b, then l = sqrt(d.d) and 1/l for the
+// whole block with Eigen's packet operations (IEEE sqrt and division, the same bits as the scalar
+// ones, several per instruction), then the forces.
+constexpr Eigen::Index kBlock = 64;
+using BlockArray = Eigen::Array<Real, kBlock, 1>;
+
+template <typename Positions>
+inline void gatherBlock(const DenseSpring* block, const Eigen::Index m, const Positions& x,
+                        Real (*d)[3], BlockArray& squared) {
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Real* const xa = column(x, block[j].a);
+    const Real* const xb = column(x, block[j].b);
+    Real* const dj = d[j];
+    dj[0] = xa[0] - xb[0];
+    dj[1] = xa[1] - xb[1];
+    dj[2] = xa[2] - xb[2];
+    squared[j] = dj[0] * dj[0] + dj[1] * dj[1] + dj[2] * dj[2];
+  }
+}
+
+void accumulateDensePairForces(const std::vector<DenseSpring>& springs,
+                               const Eigen::Ref<const Vec3Array>& x,
+                               const Eigen::Ref<const Vec3Array>& v, const bool pull_only,
+                               Eigen::Ref<Vec3Array> force) {
+  Real d[kBlock][3];
+  BlockArray squared;
+  BlockArray length;
+  BlockArray inverse_length;
+  const auto count = static_cast<Eigen::Index>(springs.size());
+  for (Eigen::Index start = 0; start < count; start += kBlock) {
+    const Eigen::Index m = std::min(kBlock, count - start);
+    const DenseSpring* const block = springs.data() + start;
+    gatherBlock(block, m, x, d, squared);
+    length.head(m) = squared.head(m).sqrt();
+    inverse_length.head(m) = length.head(m).inverse();
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const DenseSpring& s = block[j];
+      Real f[3];
+      if (!springForceFromLength(d[j], length[j], inverse_length[j], column(v, s.a), column(v, s.b),
+                                 s.stiffness, s.rest_length, s.damping, pull_only, f)) {
+        continue;
+      }
+      Real* const fa = column(force, s.a);
+      Real* const fb = column(force, s.b);
+      for (int c = 0; c < 3; ++c) {
+        fa[c] += f[c];
+        fb[c] -= f[c];
+      }
+    }
+  }
+}
+
+// energy + sum k (l - L)^2 / 2 over dense springs (stretched ones only when pull_only), summed in
+// order.
+Real addDensePairEnergy(Real energy, const std::vector<DenseSpring>& springs, const ConstVec3Map& x,
+                        const bool pull_only) {
+  Real d[kBlock][3];
+  BlockArray squared;
+  BlockArray length;
+  const auto count = static_cast<Eigen::Index>(springs.size());
+  for (Eigen::Index start = 0; start < count; start += kBlock) {
+    const Eigen::Index m = std::min(kBlock, count - start);
+    const DenseSpring* const block = springs.data() + start;
+    gatherBlock(block, m, x, d, squared);
+    length.head(m) = squared.head(m).sqrt();
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Real extension = length[j] - block[j].rest_length;
+      if (pull_only && extension <= 0.0) continue;
+      energy += 0.5 * block[j].stiffness * extension * extension;
+    }
+  }
+  return energy;
 }
 
 template <typename Anchored>
@@ -110,7 +194,8 @@ inline Vec3 dampedHarmonicPosition(const Vec3& x0, const Vec3& v0, const Real w2
 void accumulateGeneratorForces(const ForceGenerators& generators, const ParticleStore& particles,
                                const Eigen::Ref<const Vec3Array>& x,
                                const Eigen::Ref<const Vec3Array>& v, const Real gravity_magnitude,
-                               const Real dt, Eigen::Ref<Vec3Array> force) {
+                               const Real dt, Eigen::Ref<Vec3Array> force,
+                               const DenseSprings* dense) {
   const auto index = [&particles](const ParticleId id) {
     return particles.denseIndexUnchecked(id);
   };
@@ -122,9 +207,17 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
     force.col(i) -= (drag.k1 + drag.k2 * vi.norm()) * vi;
   }
 
-  accumulatePairForces(generators.springs, particles, x, v, false, force);
+  if (dense) {
+    accumulateDensePairForces(dense->springs, x, v, false, force);
+  } else {
+    accumulatePairForces(generators.springs, particles, x, v, false, force);
+  }
   accumulateAnchoredForces(generators.anchored_springs, particles, x, v, false, force);
-  accumulatePairForces(generators.bungees, particles, x, v, true, force);
+  if (dense) {
+    accumulateDensePairForces(dense->bungees, x, v, true, force);
+  } else {
+    accumulatePairForces(generators.bungees, particles, x, v, true, force);
+  }
   accumulateAnchoredForces(generators.anchored_bungees, particles, x, v, true, force);
 
   for (const Buoyancy& buoyancy : generators.buoyancies) {
@@ -152,7 +245,25 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
   }
 }
 
-Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles) {
+DenseSprings resolveDenseSprings(const ForceGenerators& generators,
+                                 const ParticleStore& particles) {
+  const auto resolve = [&particles](const auto& pairs, std::vector<DenseSpring>& out) {
+    out.clear();
+    out.reserve(pairs.size());
+    for (const auto& pair : pairs) {
+      out.push_back(DenseSpring{static_cast<std::uint32_t>(particles.denseIndexUnchecked(pair.a)),
+                                static_cast<std::uint32_t>(particles.denseIndexUnchecked(pair.b)),
+                                pair.stiffness, pair.rest_length, pair.damping});
+    }
+  };
+  DenseSprings dense;
+  resolve(generators.springs, dense.springs);
+  resolve(generators.bungees, dense.bungees);
+  return dense;
+}
+
+Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles,
+                              const DenseSprings* dense) {
   const auto x = particles.positions();
   const auto index = [&particles](const ParticleId id) {
     return particles.denseIndexUnchecked(id);
@@ -162,19 +273,27 @@ Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleS
   };
   Real energy = 0.0;
   const Real* const position = x.data();
-  for (const Spring& s : generators.springs) {
-    const Real* const xa = position + 3 * index(s.a);
-    const Real* const xb = position + 3 * index(s.b);
-    const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
-    energy +=
-        elastic(s.stiffness, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s.rest_length);
+  if (dense) {
+    energy = addDensePairEnergy(energy, dense->springs, x, false);
+  } else {
+    for (const Spring& s : generators.springs) {
+      const Real* const xa = position + 3 * index(s.a);
+      const Real* const xb = position + 3 * index(s.b);
+      const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+      energy +=
+          elastic(s.stiffness, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s.rest_length);
+    }
   }
   for (const AnchoredSpring& s : generators.anchored_springs) {
     energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length);
   }
-  for (const Bungee& s : generators.bungees) {
-    const Real extension = (x.col(index(s.a)) - x.col(index(s.b))).norm() - s.rest_length;
-    if (extension > 0.0) energy += elastic(s.stiffness, extension);
+  if (dense) {
+    energy = addDensePairEnergy(energy, dense->bungees, x, true);
+  } else {
+    for (const Bungee& s : generators.bungees) {
+      const Real extension = (x.col(index(s.a)) - x.col(index(s.b))).norm() - s.rest_length;
+      if (extension > 0.0) energy += elastic(s.stiffness, extension);
+    }
   }
   for (const AnchoredBungee& s : generators.anchored_bungees) {
     const Real extension = (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length;

@@ -65,6 +65,7 @@ ParticleId ParticleStore::add(const ParticleSpec& spec) {
   radius_.push_back(spec.radius);
   name_.push_back(spec.name);
   ++damping_version_;
+  ++layout_version_;
   return ParticleId{slot, generation_of_slot_[slot]};
 }
 
@@ -78,6 +79,7 @@ Status ParticleStore::remove(const ParticleId id) {
   ++generation_of_slot_[id.index];
   free_slots_.push_back(id.index);
   ++damping_version_;
+  ++layout_version_;
   return Status::ok();
 }
 
@@ -94,6 +96,7 @@ void ParticleStore::clear() {
   }
   name_.clear();
   ++damping_version_;
+  ++layout_version_;
 }
 
 bool ParticleStore::contains(const ParticleId id) const { return find(id).has_value(); }

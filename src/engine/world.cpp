@@ -334,6 +334,23 @@ void World::invalidateCaches() {
   energy_known_ = false;
 }
 
+void World::refreshDenseSprings() {
+  if (denseSprings()) return;
+  dense_springs_ = resolveDenseSprings(generators_, particles_);
+  dense_springs_layout_ = particles_.layoutVersion();
+  dense_springs_generators_ = generators_.size();
+  dense_springs_next_id_ = next_generator_id_;
+}
+
+const DenseSprings* World::denseSprings() const {
+  // Springs only change through add (a new id), remove (fewer generators) and clear; dense
+  // indices only through the store's layout.
+  const bool valid = dense_springs_layout_ == particles_.layoutVersion() &&
+                     dense_springs_generators_ == generators_.size() &&
+                     dense_springs_next_id_ == next_generator_id_;
+  return valid ? &dense_springs_ : nullptr;
+}
+
 void World::resizeScratch() {
   const Eigen::Index n = static_cast<Eigen::Index>(particles_.size());
   if (acceleration_.cols() != n) {
@@ -372,7 +389,7 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
   } else {
     out.setZero();
   }
-  accumulateGeneratorForces(generators_, particles_, x, v, g.norm(), h, out);
+  accumulateGeneratorForces(generators_, particles_, x, v, g.norm(), h, out, denseSprings());
   // a = F/m + g + a_own, zero for immovable particles
   for (std::size_t i = 0; i < n; ++i) {
     out.col(i) = out.col(i) * inverse_mass[i] + mobility[i] * (g + own_acceleration.col(i));
@@ -381,6 +398,7 @@ void World::computeAccelerations(const Eigen::Ref<const Vec3Array>& x,
 
 void World::step() {
   if (paused_) return;
+  refreshDenseSprings();
   const int substeps = stabilityReport().substeps_used;
   substeps_used_ = substeps;
   const std::uint64_t divergences_before = divergence_count_;
@@ -566,7 +584,8 @@ std::pair<Real, Real> World::guardEnergies() const {
     kinetic_twice += mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     gravitational -= mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
   }
-  return {0.5 * kinetic_twice + springEnergy(), gravitational};
+  return {0.5 * kinetic_twice + generatorPotentialEnergy(generators_, particles_, denseSprings()),
+          gravitational};
 }
 
 void World::applyDivergencePolicy() {

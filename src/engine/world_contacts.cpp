@@ -519,10 +519,14 @@ void World::resolveContacts(const Real h) {
                                              : std::min(up.dot(x.col(c.a)), up.dot(x.col(c.b)));
       ws.order.emplace_back(height, static_cast<std::uint32_t>(k));
     }
-    std::sort(ws.order.begin(), ws.order.end());
-    ws.sorted_contacts.clear();
-    for (const auto& entry : ws.order) ws.sorted_contacts.push_back(ws.contacts[entry.second]);
-    ws.contacts.swap(ws.sorted_contacts);
+    // Often already in order (every collider contact ranks first, in generation order): then
+    // the permutation is the identity and the copy is skipped.
+    if (!std::is_sorted(ws.order.begin(), ws.order.end())) {
+      std::sort(ws.order.begin(), ws.order.end());
+      ws.sorted_contacts.clear();
+      for (const auto& entry : ws.order) ws.sorted_contacts.push_back(ws.contacts[entry.second]);
+      ws.contacts.swap(ws.sorted_contacts);
+    }
   }
 
   ws.resolver.resolve(ws.contacts, particles_.positions(), particles_.velocities(),

@@ -81,7 +81,7 @@ void World::integrateSemiImplicitEuler(const Real h) {
       acceleration_.setZero();  // the external forces are all zero
     }
     accumulateGeneratorForces(generators_, particles_, x, v, config_.gravity.norm(), h,
-                              acceleration_);
+                              acceleration_, denseSprings());
   }
   const Real g[3] = {config_.gravity.x(), config_.gravity.y(), config_.gravity.z()};
   const auto pass = has_forces ? semiImplicitEulerPass<true> : semiImplicitEulerPass<false>;

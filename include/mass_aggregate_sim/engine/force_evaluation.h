@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "mass_aggregate_sim/engine/force_generators.h"
 #include "mass_aggregate_sim/engine/particle_store.h"
@@ -9,16 +11,39 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
+// A spring or bungee between two particles with both ends resolved to dense indices.
+struct DenseSpring {
+  std::uint32_t a = 0;
+  std::uint32_t b = 0;
+  Real stiffness = 0.0;
+  Real rest_length = 0.0;
+  Real damping = 0.0;
+};
+
+// The springs and bungees of a ForceGenerators in the same order, ends as dense indices: the hot
+// loops then read one packed array instead of looking every id up. Valid while neither the
+// generators nor the store's layout (ParticleStore::layoutVersion) change.
+struct DenseSprings {
+  std::vector<DenseSpring> springs;
+  std::vector<DenseSpring> bungees;
+};
+DenseSprings resolveDenseSprings(const ForceGenerators& generators, const ParticleStore& particles);
+
 // Adds the force of every generator, evaluated at positions x and velocities v (dense order, same
 // size as the store), to `force`. A pure function of its arguments, so RK4 can call it per stage.
-// dt is the step the stiff springs solve over; gravity_magnitude feeds buoyancy.
+// dt is the step the stiff springs solve over; gravity_magnitude feeds buoyancy. `dense`, when
+// given, must be resolveDenseSprings() of the same generators and store: the springs and bungees
+// then come from it (same forces, same order).
 void accumulateGeneratorForces(const ForceGenerators& generators, const ParticleStore& particles,
                                const Eigen::Ref<const Vec3Array>& x,
                                const Eigen::Ref<const Vec3Array>& v, Real gravity_magnitude,
-                               Real dt, Eigen::Ref<Vec3Array> force);
+                               Real dt, Eigen::Ref<Vec3Array> force,
+                               const DenseSprings* dense = nullptr);
 
-// Elastic energy stored in springs, anchored springs, stretched bungees and stiff springs.
-Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles);
+// Elastic energy stored in springs, anchored springs, stretched bungees and stiff springs; `dense`
+// as for accumulateGeneratorForces.
+Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles,
+                              const DenseSprings* dense = nullptr);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -71,6 +71,9 @@ class ParticleStore {
   void setDamping(std::size_t dense, Real damping);
   // Changes whenever any damping may have changed (set, add, remove), so d^dt can be cached.
   std::uint64_t dampingVersion() const { return damping_version_; }
+  // Changes whenever the dense order may have changed (add, remove, clear), so data that holds
+  // dense indices can be cached.
+  std::uint64_t layoutVersion() const { return layout_version_; }
   ScalarMap radii() { return scalar(radius_); }
   ConstScalarMap radii() const { return scalar(radius_); }
   const std::string& name(std::size_t dense) const { return name_[dense]; }
@@ -109,6 +112,7 @@ class ParticleStore {
   std::vector<bool> slot_live_;
   std::vector<std::uint32_t> free_slots_;
   std::uint64_t damping_version_ = 0;
+  std::uint64_t layout_version_ = 0;
 };
 
 }  // namespace engine

@@ -9,6 +9,7 @@
 
 #include "mass_aggregate_sim/engine/colliders.h"
 #include "mass_aggregate_sim/engine/collision_settings.h"
+#include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/force_generators.h"
 #include "mass_aggregate_sim/engine/links.h"
 #include "mass_aggregate_sim/engine/particle_store.h"
@@ -159,6 +160,10 @@ class World {
   Result<GeneratorId> addGenerator(std::vector<Generator>& kind, Generator generator);
   Status validateParticleRef(ParticleId id, const char* field) const;
   void invalidateCaches();
+  // The springs and bungees with dense indices: rebuilt at the start of a step when the generators
+  // or the particles' layout changed; nullptr while stale (callers then look ids up).
+  void refreshDenseSprings();
+  const DenseSprings* denseSprings() const;
   void resizeScratch();
   void refreshDampingFactors(Real h);
   // Total acceleration at (x, v): generators, external forces, gravity, per-particle acceleration.
@@ -260,6 +265,11 @@ class World {
   std::vector<Material> slot_material_;
   std::vector<std::uint8_t> slot_has_material_;
   std::size_t custom_material_count_ = 0;
+  DenseSprings dense_springs_;
+  // What dense_springs_ was built from; a copied world starts stale and rebuilds.
+  std::uint64_t dense_springs_layout_ = ~std::uint64_t{0};
+  std::size_t dense_springs_generators_ = 0;
+  GeneratorId dense_springs_next_id_ = 0;
   // Scratch of the contact phase; created on first use, not copied.
   std::unique_ptr<ContactWorkspace> contact_workspace_;
 };
