@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/integrator.h"
+#include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
 
@@ -25,6 +26,15 @@ const Vec3 kDefaultGravity(0.0, 0.0, -9.81);
 
 std::string indexed(const std::string& key, const int i) {
   return key + "[" + std::to_string(i) + "]";
+}
+
+// A refusal from input_limits ("field: reason") as a ParamError under `key`.
+void throwIfBad(const engine::Status& status, const std::string& key) {
+  if (status) return;
+  const std::string& message = status.message();
+  const std::size_t colon = message.find(": ");
+  if (colon == std::string::npos) throw ParamError(key, message);
+  throw ParamError(key + "." + message.substr(0, colon), message.substr(colon + 2));
 }
 
 // The properties every particle source shares: mass (or fixed), radius, damping, velocity,
@@ -115,6 +125,12 @@ class SceneBuilder {
     config.integrator = *parsed;
     config.gravity =
         overrides_.gravity ? *overrides_.gravity : vec3Or(scene, key, "gravity", kDefaultGravity);
+    const engine::Status gravity =
+        checkVector(config.gravity, kMaxAcceleration, "gravity", "m/s^2");
+    if (!gravity) {
+      throw ParamError(overrides_.gravity ? "~gravity" : key + ".gravity",
+                       gravity.message().substr(std::string("gravity: ").size()));
+    }
     const engine::Status valid = engine::validateConfig(config);
     if (!valid) throw ParamError(key, valid.message());
     return config;
@@ -128,6 +144,7 @@ class SceneBuilder {
     if (!spec.name.empty() && world_.particles().findByName(spec.name)) {
       throw ParamError(key, "the particle name '" + spec.name + "' is used twice");
     }
+    throwIfBad(checkParticleSpec(spec, overrides_.world_frame), key);
     const auto added = world_.addParticle(spec);
     if (!added) throw ParamError(key, added.message());
   }
@@ -167,6 +184,10 @@ class SceneBuilder {
       const Vec3 end = readVec3(line["end"], k + ".end");
       const int count = intOr(line, k, "count", 2);
       if (count < 2) throw ParamError(k + ".count", "must be at least 2");
+      if (static_cast<std::size_t>(count) > overrides_.max_particles) {
+        throw ParamError(k + ".count", "more than ~max_particles (" +
+                                           std::to_string(overrides_.max_particles) + ")");
+      }
       ParticleSpec spec = readParticleProperties(line, k);
       std::vector<bool> fixed(static_cast<std::size_t>(count), spec.inverse_mass == 0.0);
       if (has(line, "fixed_indices")) {
@@ -285,7 +306,15 @@ class SceneBuilder {
     return request;
   }
 
+  void checkLinkCount(const std::string& key) const {
+    if (world_.generators().size() + world_.links().size() >= overrides_.max_links) {
+      throw ParamError(key, "more than ~max_links (" + std::to_string(overrides_.max_links) +
+                                ") links and force generators");
+    }
+  }
+
   void addLinkOrThrow(const LinkRequest& request, const std::string& key) {
+    checkLinkCount(key);
     const auto added = addLink(world_, request);
     if (!added) throw ParamError(key, added.message());
   }
@@ -342,6 +371,7 @@ class SceneBuilder {
         const Real k1 = realOr(force, k, "k1", 0.0);
         const Real k2 = realOr(force, k, "k2", 0.0);
         for (const auto id : readTargets(force, k)) {
+          checkLinkCount(k);
           const auto added = world_.addDrag(engine::Drag{id, k1, k2});
           if (!added) throw ParamError(k, added.message());
         }
@@ -357,6 +387,7 @@ class SceneBuilder {
         buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
         for (const auto id : readTargets(force, k)) {
           buoyancy.particle = id;
+          checkLinkCount(k);
           const auto added = world_.addBuoyancy(buoyancy);
           if (!added) throw ParamError(k, added.message());
         }
@@ -408,11 +439,14 @@ class SceneBuilder {
       material.restitution = realOr(c, k, "restitution", material.restitution);
       material.friction = realOr(c, k, "friction", material.friction);
       engine::Result<engine::ColliderId> added = engine::Status::error("unknown collider");
+      // The node's bounds, reported after the engine's own checks (which name the rule first).
+      engine::Status bounds = engine::Status::ok();
       if (type == "plane") {
         checkKeys(c, k, {"type", "normal", "offset", "restitution", "friction"});
         engine::PlaneCollider plane;
         plane.normal = vec3Or(c, k, "normal", plane.normal);
         plane.offset = realOr(c, k, "offset", plane.offset);
+        bounds = checkNonNegative(std::abs(plane.offset), kMaxCoordinate, "offset", "m (absolute)");
         plane.material = material;
         added = world_.addPlane(plane);
       } else if (type == "sphere") {
@@ -420,6 +454,8 @@ class SceneBuilder {
         engine::SphereCollider sphere;
         sphere.center = vec3Or(c, k, "center", sphere.center);
         sphere.radius = realOr(c, k, "radius", sphere.radius);
+        bounds = checkPosition(sphere.center, "center");
+        if (bounds) bounds = checkNonNegative(sphere.radius, kMaxLength, "radius", "m");
         sphere.material = material;
         added = world_.addSphere(sphere);
       } else if (type == "box") {
@@ -428,6 +464,8 @@ class SceneBuilder {
         engine::BoxCollider box;
         box.center = vec3Or(c, k, "center", box.center);
         box.half_extents = vec3Or(c, k, "half_extents", box.half_extents);
+        bounds = checkPosition(box.center, "center");
+        if (bounds) bounds = checkVector(box.half_extents, kMaxLength, "half_extents", "m");
         if (has(c, "orientation")) {
           // [x, y, z, w], as in geometry_msgs/Quaternion.
           XmlRpcValue& q = c["orientation"];
@@ -446,6 +484,9 @@ class SceneBuilder {
         capsule.a = vec3Or(c, k, "a", capsule.a);
         capsule.b = vec3Or(c, k, "b", capsule.b);
         capsule.radius = realOr(c, k, "radius", capsule.radius);
+        bounds = checkPosition(capsule.a, "a");
+        if (bounds) bounds = checkPosition(capsule.b, "b");
+        if (bounds) bounds = checkNonNegative(capsule.radius, kMaxLength, "radius", "m");
         capsule.material = material;
         added = world_.addCapsule(capsule);
       } else {
@@ -453,6 +494,7 @@ class SceneBuilder {
                          "unknown collider '" + type + "' (known: plane, sphere, box, capsule)");
       }
       if (!added) throw ParamError(k, added.message());
+      throwIfBad(bounds, k);
     }
   }
 

@@ -119,7 +119,7 @@ class SimNode {
 
 // Reads the node parameters and the scene; the error names the parameter and the reason.
 engine::Result<NodeParams> readNodeParams(ros::NodeHandle& private_nh);
-engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, std::size_t max_particles);
+engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, const NodeParams& params);
 
 }  // namespace node
 }  // namespace mass_aggregate_sim
