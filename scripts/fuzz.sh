@@ -9,6 +9,9 @@ seconds="${MAS_FUZZ_SECONDS:-60}"
 fuzz_dir="${WS_DIR}-fuzz"
 mkdir -p "${out_dir}" "${fuzz_dir}"
 eigen_include="$(pkg-config --cflags-only-I eigen3)"
+# Targets that use the node's sources need its generated message headers (made by the main
+# catkin build, which scripts/test.sh runs first); ROS's own headers are in /usr/include.
+msg_include="${WS_DIR}/devel/include"
 status=0
 for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
   target="$(basename "${target_src}" .cpp)"
@@ -25,7 +28,7 @@ for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
     [ -n "${flag}" ] && extra_flags+=("${flag}")
   done < <(sed -n 's#^// fuzz-flags: ##p' "${target_src}" | tr ' ' '\n')
   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I"${REPO_DIR}/include" ${eigen_include} "${target_src}" "${REPO_DIR}"/src/engine/*.cpp \
+    -I"${REPO_DIR}/include" -I"${msg_include}" ${eigen_include} "${target_src}" "${REPO_DIR}"/src/engine/*.cpp \
     "${extra_sources[@]}" "${extra_flags[@]}" -o "${binary}" >"${fuzz_dir}/${target}.build.log" 2>&1 || {
     tail -n 30 "${fuzz_dir}/${target}.build.log"
     echo "fuzz target ${target} failed to build" >&2

@@ -2,6 +2,7 @@
 """Records a driven node with rosbag, replays the bag into a second node with
 scripts/replay_commands.py, and expects the same final state hash (rostest: test/replay.test)."""
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -108,8 +109,14 @@ class ReplayTest(unittest.TestCase):
         self.assertGreater(final.commands_applied, 10)
         result = self.replay(bag)
         self.assertEqual(result.returncode, 0, result.stdout)
-        self.assertIn('match', result.stdout)
-        self.assertIn(str(final.state_hash), result.stdout)
+        # The replayed node's own final hash, not only the recorded one, must be the driven
+        # node's final hash, at the same step.
+        found = re.search(r'to step (\d+): state hash (\d+), recorded (\d+): match', result.stdout)
+        self.assertIsNotNone(found, result.stdout)
+        self.assertEqual(int(found.group(1)), final.step)
+        self.assertEqual(int(found.group(2)), final.state_hash)
+        self.assertEqual(int(found.group(3)), final.state_hash)
+        self.assertGreater(final.step, 0)
 
 
 if __name__ == '__main__':

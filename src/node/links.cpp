@@ -1,6 +1,10 @@
 #include "mass_aggregate_sim/node/links.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "mass_aggregate_sim/node/input_limits.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -29,7 +33,8 @@ Vec3 positionOf(const engine::World& world, const ParticleId id) {
 
 Result<GeneratorId> addAnchoredLink(engine::World& world, const ParticleId a,
                                     const LinkRequest& r) {
-  if (!r.anchor.allFinite()) return Status::error("anchor is not finite");
+  const Status anchor = checkPosition(r.anchor, "anchor");
+  if (!anchor) return anchor;
   const Real distance = (positionOf(world, a) - r.anchor).norm();
   switch (r.type) {
     case LinkType::kSpring:
@@ -113,7 +118,33 @@ const char* linkTypeName(const LinkType type) {
 
 std::string linkTypeNames() { return "spring, bungee, stiff_spring, cable, rod"; }
 
+namespace {
+
+// What the engine does not check itself: upper bounds, and lengths (negative: the distance).
+Status checkLinkNumbers(const LinkRequest& r) {
+  Status valid = checkNonNegative(r.stiffness, kMaxStiffness, "stiffness", "N/m");
+  if (valid) valid = checkNonNegative(r.damping, kMaxLinkDamping, "damping", "N s/m");
+  if (!valid) return valid;
+  for (const auto& [value, field] : {std::pair<Real, const char*>{r.rest_length, "rest_length"},
+                                     {r.max_length, "max_length"},
+                                     {r.length, "length"}}) {
+    if (!std::isfinite(value)) return Status::error(std::string(field) + ": must be finite");
+    if (value > kMaxLength) {
+      return Status::error(std::string(field) + ": must be at most " + std::to_string(kMaxLength) +
+                           " m (negative: the current distance)");
+    }
+  }
+  if (!std::isfinite(r.restitution) || r.restitution < 0.0 || r.restitution > 1.0) {
+    return Status::error("restitution: must be in [0, 1]");
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
 Result<GeneratorId> addLink(engine::World& world, const LinkRequest& request) {
+  const Status numbers = checkLinkNumbers(request);
+  if (!numbers) return numbers;
   const auto a = resolveParticle(world, request.a);
   if (!a) return Status::error("a: " + a.message());
   if (!request.b) return addAnchoredLink(world, *a, request);

@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
     ROS_FATAL("bad parameter: %s", params.message().c_str());
     return 1;
   }
-  const auto scene = node::readScene(private_nh, params.value().limits.max_particles);
+  const auto scene = node::readScene(private_nh, *params);
   if (!scene) {
     ROS_FATAL("bad scene: %s", scene.message().c_str());
     return 1;

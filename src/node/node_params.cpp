@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 #include <vector>
+
+#include "mass_aggregate_sim/node/input_limits.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -12,6 +16,27 @@ using engine::Status;
 using engine::Vec3;
 
 Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
+  for (const auto& [name, type] : std::initializer_list<std::pair<const char*, ParamType>>{
+           {"publish_rate", ParamType::kNumber},
+           {"frame_id", ParamType::kString},
+           {"paused", ParamType::kBool},
+           {"publish_clock", ParamType::kBool},
+           {"publish_tf", ParamType::kBool},
+           {"default_radius", ParamType::kNumber},
+           {"tension_scale", ParamType::kNumber},
+           {"max_particles", ParamType::kInt},
+           {"max_steps_per_request", ParamType::kInt},
+           {"max_links", ParamType::kInt},
+           {"max_sustained_forces", ParamType::kInt},
+           {"rate", ParamType::kNumber},
+           {"substeps", ParamType::kInt},
+           {"integrator", ParamType::kString},
+           {"gravity", ParamType::kVec3}}) {
+    XmlRpc::XmlRpcValue value;
+    if (!nh.getParam(name, value)) continue;
+    const Status typed = checkParamType(name, value, type);
+    if (!typed) return typed;
+  }
   NodeParams p;
   nh.param("publish_rate", p.publish_rate, p.publish_rate);
   nh.param("frame_id", p.frame_id, p.frame_id);
@@ -24,24 +49,45 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   nh.param("max_particles", max_particles, max_particles);
   int max_steps = static_cast<int>(p.limits.max_steps_per_request);
   nh.param("max_steps_per_request", max_steps, max_steps);
+  int max_links = static_cast<int>(p.limits.max_links);
+  nh.param("max_links", max_links, max_links);
+  int max_sustained = static_cast<int>(p.limits.max_sustained_forces);
+  nh.param("max_sustained_forces", max_sustained, max_sustained);
   if (!(p.publish_rate > 0.0 && p.publish_rate <= 1000.0)) {
     return Status::error("~publish_rate: must be in (0, 1000] Hz");
   }
   if (p.frame_id.empty()) return Status::error("~frame_id: must not be empty");
-  if (!(p.default_radius >= 0.0 && std::isfinite(p.default_radius))) {
-    return Status::error("~default_radius: must be finite and >= 0");
+  if (!(p.default_radius >= 0.0 && p.default_radius <= kMaxRadius)) {
+    return Status::error("~default_radius: must be in [0, " + std::to_string(kMaxRadius) + "] m");
   }
-  if (!(p.tension_scale > 0.0)) return Status::error("~tension_scale: must be > 0");
-  if (max_particles < 1) return Status::error("~max_particles: must be >= 1");
-  if (max_steps < 1) return Status::error("~max_steps_per_request: must be >= 1");
+  if (!(p.tension_scale > 0.0 && std::isfinite(p.tension_scale))) {
+    return Status::error("~tension_scale: must be finite and > 0");
+  }
+  const Status name = checkParticleName(p.frame_id, "");
+  if (!name) return Status::error("~frame_id: " + name.message());
+  for (const auto& [key, value, limit] :
+       {std::tuple<const char*, int, int>{"max_particles", max_particles, kMaxParticlesLimit},
+        {"max_steps_per_request", max_steps, kMaxStepsPerRequestLimit},
+        {"max_links", max_links, kMaxLinksLimit},
+        {"max_sustained_forces", max_sustained, kMaxSustainedForcesLimit}}) {
+    if (value < 1 || value > limit) {
+      return Status::error("~" + std::string(key) + ": must be in [1, " + std::to_string(limit) +
+                           "], got " + std::to_string(value));
+    }
+  }
   p.limits.max_particles = static_cast<std::size_t>(max_particles);
   p.limits.max_steps_per_request = static_cast<std::uint32_t>(max_steps);
+  p.limits.max_links = static_cast<std::size_t>(max_links);
+  p.limits.max_sustained_forces = static_cast<std::size_t>(max_sustained);
+  p.limits.world_frame = p.frame_id;
   return p;
 }
 
-Result<LoadedScene> readScene(ros::NodeHandle& nh, const std::size_t max_particles) {
+Result<LoadedScene> readScene(ros::NodeHandle& nh, const NodeParams& params) {
   SceneOverrides overrides;
-  overrides.max_particles = max_particles;
+  overrides.max_particles = params.limits.max_particles;
+  overrides.max_links = params.limits.max_links;
+  overrides.world_frame = params.frame_id;
   double rate;
   if (nh.getParam("rate", rate)) overrides.rate = rate;
   int substeps;

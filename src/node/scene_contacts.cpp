@@ -1,8 +1,10 @@
 #include "mass_aggregate_sim/node/scene_contacts.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <string>
 
+#include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
 
 namespace mass_aggregate_sim {
@@ -58,11 +60,14 @@ void readColliders(XmlRpcValue& list, const std::string& key, engine::World& wor
     material.restitution = realOr(c, k, "restitution", material.restitution);
     material.friction = realOr(c, k, "friction", material.friction);
     engine::Result<engine::ColliderId> added = engine::Status::error("unknown collider");
+    // The node's bounds, reported after the engine's own checks (which name the rule first).
+    engine::Status bounds = engine::Status::ok();
     if (type == "plane") {
       checkKeys(c, k, {"type", "normal", "offset", "restitution", "friction"});
       engine::PlaneCollider plane;
       plane.normal = vec3Or(c, k, "normal", plane.normal);
       plane.offset = realOr(c, k, "offset", plane.offset);
+      bounds = checkNonNegative(std::abs(plane.offset), kMaxCoordinate, "offset", "m (absolute)");
       plane.material = material;
       added = world.addPlane(plane);
     } else if (type == "sphere") {
@@ -70,6 +75,8 @@ void readColliders(XmlRpcValue& list, const std::string& key, engine::World& wor
       engine::SphereCollider sphere;
       sphere.center = vec3Or(c, k, "center", sphere.center);
       sphere.radius = realOr(c, k, "radius", sphere.radius);
+      bounds = checkPosition(sphere.center, "center");
+      if (bounds) bounds = checkNonNegative(sphere.radius, kMaxLength, "radius", "m");
       sphere.material = material;
       added = world.addSphere(sphere);
     } else if (type == "box") {
@@ -77,6 +84,8 @@ void readColliders(XmlRpcValue& list, const std::string& key, engine::World& wor
       engine::BoxCollider box;
       box.center = vec3Or(c, k, "center", box.center);
       box.half_extents = vec3Or(c, k, "half_extents", box.half_extents);
+      bounds = checkPosition(box.center, "center");
+      if (bounds) bounds = checkVector(box.half_extents, kMaxLength, "half_extents", "m");
       if (has(c, "orientation")) {
         // [x, y, z, w], as in geometry_msgs/Quaternion.
         XmlRpcValue& q = c["orientation"];
@@ -95,6 +104,9 @@ void readColliders(XmlRpcValue& list, const std::string& key, engine::World& wor
       capsule.a = vec3Or(c, k, "a", capsule.a);
       capsule.b = vec3Or(c, k, "b", capsule.b);
       capsule.radius = realOr(c, k, "radius", capsule.radius);
+      bounds = checkPosition(capsule.a, "a");
+      if (bounds) bounds = checkPosition(capsule.b, "b");
+      if (bounds) bounds = checkNonNegative(capsule.radius, kMaxLength, "radius", "m");
       capsule.material = material;
       added = world.addCapsule(capsule);
     } else {
@@ -102,6 +114,7 @@ void readColliders(XmlRpcValue& list, const std::string& key, engine::World& wor
                        "unknown collider '" + type + "' (known: plane, sphere, box, capsule)");
     }
     if (!added) throw ParamError(k, added.message());
+    throwIfBad(bounds, k);
   }
 }
 

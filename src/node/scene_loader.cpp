@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/integrator.h"
+#include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/scene_contacts.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
@@ -117,6 +118,12 @@ class SceneBuilder {
     config.integrator = *parsed;
     config.gravity =
         overrides_.gravity ? *overrides_.gravity : vec3Or(scene, key, "gravity", kDefaultGravity);
+    const engine::Status gravity =
+        checkVector(config.gravity, kMaxAcceleration, "gravity", "m/s^2");
+    if (!gravity) {
+      throw ParamError(overrides_.gravity ? "~gravity" : key + ".gravity",
+                       gravity.message().substr(std::string("gravity: ").size()));
+    }
     const engine::Status valid = engine::validateConfig(config);
     if (!valid) throw ParamError(key, valid.message());
     return config;
@@ -130,6 +137,7 @@ class SceneBuilder {
     if (!spec.name.empty() && world_.particles().findByName(spec.name)) {
       throw ParamError(key, "the particle name '" + spec.name + "' is used twice");
     }
+    throwIfBad(checkParticleSpec(spec, overrides_.world_frame), key);
     const auto added = world_.addParticle(spec);
     if (!added) throw ParamError(key, added.message());
   }
@@ -169,6 +177,10 @@ class SceneBuilder {
       const Vec3 end = readVec3(line["end"], k + ".end");
       const int count = intOr(line, k, "count", 2);
       if (count < 2) throw ParamError(k + ".count", "must be at least 2");
+      if (static_cast<std::size_t>(count) > overrides_.max_particles) {
+        throw ParamError(k + ".count", "more than ~max_particles (" +
+                                           std::to_string(overrides_.max_particles) + ")");
+      }
       ParticleSpec spec = readParticleProperties(line, k);
       std::vector<bool> fixed(static_cast<std::size_t>(count), spec.inverse_mass == 0.0);
       if (has(line, "fixed_indices")) {
@@ -287,7 +299,15 @@ class SceneBuilder {
     return request;
   }
 
+  void checkLinkCount(const std::string& key) const {
+    if (world_.generators().size() + world_.links().size() >= overrides_.max_links) {
+      throw ParamError(key, "more than ~max_links (" + std::to_string(overrides_.max_links) +
+                                ") links and force generators");
+    }
+  }
+
   void addLinkOrThrow(const LinkRequest& request, const std::string& key) {
+    checkLinkCount(key);
     const auto added = addLink(world_, request);
     if (!added) throw ParamError(key, added.message());
   }
@@ -344,6 +364,7 @@ class SceneBuilder {
         const Real k1 = realOr(force, k, "k1", 0.0);
         const Real k2 = realOr(force, k, "k2", 0.0);
         for (const auto id : readTargets(force, k)) {
+          checkLinkCount(k);
           const auto added = world_.addDrag(engine::Drag{id, k1, k2});
           if (!added) throw ParamError(k, added.message());
         }
@@ -359,6 +380,7 @@ class SceneBuilder {
         buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
         for (const auto id : readTargets(force, k)) {
           buoyancy.particle = id;
+          checkLinkCount(k);
           const auto added = world_.addBuoyancy(buoyancy);
           if (!added) throw ParamError(k, added.message());
         }

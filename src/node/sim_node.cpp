@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "mass_aggregate_sim/Command.h"
 #include "mass_aggregate_sim/ParticleArray.h"
 #include "mass_aggregate_sim/SimStats.h"
 #include "mass_aggregate_sim/node/conversions.h"
+#include "mass_aggregate_sim/node/input_limits.h"
 
 namespace mass_aggregate_sim {
 namespace node {

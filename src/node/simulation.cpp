@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "mass_aggregate_sim/node/input_limits.h"
+
 namespace mass_aggregate_sim {
 namespace node {
 namespace {
@@ -35,7 +37,8 @@ Result<std::vector<ParticleId>> Simulation::spawn(const std::vector<engine::Part
   std::set<std::string> names;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const std::string where = "particles[" + std::to_string(i) + "]: ";
-    const Status valid = engine::validateSpec(specs[i]);
+    Status valid = engine::validateSpec(specs[i]);
+    if (valid) valid = checkParticleSpec(specs[i], limits_.world_frame);
     if (!valid) return Status::error(where + valid.message());
     const std::string& name = specs[i].name;
     if (name.empty()) continue;
@@ -51,6 +54,11 @@ Result<std::vector<ParticleId>> Simulation::spawn(const std::vector<engine::Part
 
 Result<std::vector<ParticleId>> Simulation::remove(const std::vector<ParticleRef>& refs) {
   if (refs.empty()) return Status::error("no particles to remove");
+  if (refs.size() > limits_.max_particles) {
+    return Status::error("ids and names: " + std::to_string(refs.size()) +
+                         " particles named, more than ~max_particles (" +
+                         std::to_string(limits_.max_particles) + ")");
+  }
   std::vector<ParticleId> ids;
   std::set<ParticleId> seen;
   for (const auto& ref : refs) {
@@ -75,8 +83,14 @@ Status Simulation::setState(const ParticleRef& ref, const std::optional<Vec3>& p
   if (!position && !velocity) return Status::error("neither position nor velocity to set");
   const auto id = resolve(ref);
   if (!id) return id.status();
-  if (position && !position->allFinite()) return Status::error("position is not finite");
-  if (velocity && !velocity->allFinite()) return Status::error("velocity is not finite");
+  if (position) {
+    const Status valid = checkPosition(*position, "position");
+    if (!valid) return valid;
+  }
+  if (velocity) {
+    const Status valid = checkVelocity(*velocity, "velocity");
+    if (!valid) return valid;
+  }
   const auto dense = *world_.particles().find(*id);
   if (velocity && world_.particles().inverseMasses()[dense] <= 0.0 && !velocity->isZero(0.0)) {
     return Status::error("particle " + std::to_string(id.value().packed()) +
@@ -101,7 +115,12 @@ Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
     }
     return std::uint64_t{0};
   }
-  if (!request.force.allFinite()) return Status::error("force is not finite");
+  const Status valid_force = checkVector(request.force, kMaxForce, "force", "N");
+  if (!valid_force) return valid_force;
+  if (request.mode != ForceMode::kOneStep && sustained_.size() >= limits_.max_sustained_forces) {
+    return Status::error("mode: already " + std::to_string(sustained_.size()) +
+                         " sustained forces, the limit (clear some first)");
+  }
   if (request.mode == ForceMode::kOneStep) {
     world_.addForce(*id, request.force);
     return std::uint64_t{1};
@@ -124,12 +143,26 @@ Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
 Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impulse) {
   const auto id = resolve(ref);
   if (!id) return id.status();
+  if (!impulse.allFinite()) return Status::error("impulse: must be finite");
+  const std::size_t dense = *world_.particles().find(*id);
+  const Real inverse_mass = world_.particles().inverseMasses()[dense];
+  if (inverse_mass > 0.0) {
+    // The velocity it would give, checked before anything changes: v + J / m.
+    const Vec3 after = world_.particles().velocities().col(dense) + impulse * inverse_mass;
+    const Status valid = checkVelocity(after, "impulse: the resulting velocity");
+    if (!valid) return valid;
+  }
   const Status applied = world_.applyImpulse(*id, impulse);
   if (!applied) return applied;
   return Vec3(world_.particles().velocities().col(*world_.particles().find(*id)));
 }
 
 Result<GeneratorId> Simulation::addLink(const LinkRequest& request) {
+  const std::size_t links = world_.generators().size() + world_.links().size();
+  if (links >= limits_.max_links) {
+    return Status::error("already " + std::to_string(links) + " links and force generators, " +
+                         "~max_links (" + std::to_string(limits_.max_links) + ")");
+  }
   return node::addLink(world_, request);
 }
 

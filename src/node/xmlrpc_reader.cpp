@@ -8,6 +8,14 @@ namespace node {
 
 using XmlRpc::XmlRpcValue;
 
+void throwIfBad(const engine::Status& status, const std::string& key) {
+  if (status) return;
+  const std::string& message = status.message();
+  const std::size_t colon = message.find(": ");
+  if (colon == std::string::npos) throw ParamError(key, message);
+  throw ParamError(key + "." + message.substr(0, colon), message.substr(colon + 2));
+}
+
 std::string typeName(const XmlRpcValue& value) {
   switch (value.getType()) {
     case XmlRpcValue::TypeInvalid:

@@ -27,7 +27,7 @@ struct NodeParams {
 engine::Result<NodeParams> readNodeParams(ros::NodeHandle& private_nh);
 // Reads ~scene with ~rate, ~substeps, ~integrator and ~gravity as overrides; the error names the
 // key and the reason.
-engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, std::size_t max_particles);
+engine::Result<LoadedScene> readScene(ros::NodeHandle& private_nh, const NodeParams& params);
 
 }  // namespace node
 }  // namespace mass_aggregate_sim

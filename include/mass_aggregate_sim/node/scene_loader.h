@@ -18,6 +18,8 @@ struct SceneOverrides {
   std::optional<std::string> integrator;
   std::optional<engine::Vec3> gravity;  // m/s^2
   std::size_t max_particles = 20000;
+  std::size_t max_links = 100000;     // force generators and links together
+  std::string world_frame = "world";  // no particle may be named as it (tf would clash)
 };
 
 struct LoadedScene {

@@ -24,6 +24,12 @@ struct ForceRequest {
 struct SimulationLimits {
   std::size_t max_particles = 20000;
   std::uint32_t max_steps_per_request = 100000;
+  // Force generators and links together (springs, bungees, cables, rods, drag, buoyancy).
+  std::size_t max_links = 100000;
+  // Forces kept across steps (DURATION and UNTIL_CLEARED).
+  std::size_t max_sustained_forces = 10000;
+  // The node's world frame: no particle may take its name or a collider frame's (tf would clash).
+  std::string world_frame = "world";
 };
 
 // The world as the node drives it, without ROS: the loaded scene (kept for reset), requests that

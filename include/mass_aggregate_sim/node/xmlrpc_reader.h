@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mass_aggregate_sim/engine/status.h"
 #include "mass_aggregate_sim/engine/types.h"
 
 namespace mass_aggregate_sim {
@@ -23,6 +24,10 @@ class ParamError : public std::runtime_error {
   std::string key_;
   std::string reason_;
 };
+
+// Throws a refusal of the form "field: reason" as ParamError(key + "." + field, reason); a message
+// without a field stays under key. Does nothing for an ok status.
+void throwIfBad(const engine::Status& status, const std::string& key);
 
 // Typed, checked reads of XmlRpc values (what the parameter server holds). Each throws ParamError
 // naming the key and the reason.
