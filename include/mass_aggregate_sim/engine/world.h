@@ -203,7 +203,7 @@ class World {
   std::vector<Material> slot_material_;
   std::vector<std::uint8_t> slot_has_material_;
   std::size_t custom_material_count_ = 0;
-  // Scratch of the contact phase; created on first use, not copied.
+  // The contact phase's buffers and warm-start impulses; created on first use.
   std::unique_ptr<ContactWorkspace> contact_workspace_;
 };
 
