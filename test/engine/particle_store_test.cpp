@@ -50,7 +50,7 @@ TEST(ParticleStore, StaleIdIsDetectedAndReported) {
   const ParticleId first = store.add(specAt(1.0));
   ASSERT_TRUE(store.remove(first).isOk());
   const ParticleId second = store.add(specAt(2.0));
-  EXPECT_EQ(second.index, first.index);  // the slot is reused ...
+  EXPECT_EQ(second.index, first.index);            // the slot is reused ...
   EXPECT_NE(second.generation, first.generation);  // ... under a new generation
   EXPECT_FALSE(store.contains(first));
   const Status again = store.remove(first);
