@@ -72,7 +72,9 @@ TEST_P(Tunnelling, ThinObstacleStopsAFastParticleOnlyWithContinuousDetection) {
     // Without swept tests the thin obstacles are jumped over; the half-space is not, as a
     // particle deep inside it is pushed back out.
     const Real x = world.particles().positions()(0, 0);
-    if (GetParam() != Obstacle::kPlane) EXPECT_GT(x, 10.0);
+    if (GetParam() != Obstacle::kPlane) {
+      EXPECT_GT(x, 10.0);
+    }
   }
   World world = bulletWorld(true);
   addObstacle(world, GetParam());

@@ -24,7 +24,7 @@ TEST(SphereVsPlane, HitsMissesAndDeepInside) {
   EXPECT_FALSE(sphereVsPlane(Vec3(0, 0, 0.2), 0.1, ground));
   EXPECT_FALSE(sphereVsPlane(Vec3(0, 0, 0.1), 0.1, ground));                        // just touching
   expectContact(sphereVsPlane(Vec3(0, 0, -2.0), 0.1, ground), Vec3::UnitZ(), 2.1);  // half-space
-  PlaneCollider wall{Vec3(-1, 0, 0), -3.0};  // solid where -x < -3, i.e. x > 3
+  PlaneCollider wall{Vec3(-1, 0, 0), -3.0, Material{}};  // solid where -x < -3, i.e. x > 3
   expectContact(sphereVsPlane(Vec3(2.95, 0, 0), 0.1, wall), Vec3(-1, 0, 0), 0.05);
 }
 
@@ -66,7 +66,7 @@ TEST(SphereVsBox, OrientedBoxUsesItsOwnAxes) {
 }
 
 TEST(SphereVsCapsule, SideEndCapsAndAxis) {
-  CapsuleCollider capsule{Vec3(0, 0, 0), Vec3(0, 0, 2), 0.5};
+  CapsuleCollider capsule{Vec3(0, 0, 0), Vec3(0, 0, 2), 0.5, Material{}};
   expectContact(sphereVsCapsule(Vec3(0.55, 0, 1.0), 0.1, capsule), Vec3::UnitX(), 0.05);
   expectContact(sphereVsCapsule(Vec3(0, 0, 2.55), 0.1, capsule), Vec3::UnitZ(), 0.05);
   expectContact(sphereVsCapsule(Vec3(0, 0, -0.55), 0.1, capsule), -Vec3::UnitZ(), 0.05);
@@ -75,7 +75,7 @@ TEST(SphereVsCapsule, SideEndCapsAndAxis) {
   EXPECT_FALSE(sphereVsCapsule(Vec3(0.7, 0, 1.0), 0.1, capsule));
   EXPECT_FALSE(sphereVsCapsule(Vec3(0.0, 0, 2.7), 0.1, capsule));
   // Degenerate capsule (a == b) is a sphere.
-  CapsuleCollider point{Vec3(1, 1, 1), Vec3(1, 1, 1), 0.5};
+  CapsuleCollider point{Vec3(1, 1, 1), Vec3(1, 1, 1), 0.5, Material{}};
   expectContact(sphereVsCapsule(Vec3(1, 1, 1.55), 0.1, point), Vec3::UnitZ(), 0.05);
 }
 
@@ -121,7 +121,7 @@ TEST(RayVsShapes, HitsMissesEdgesAndStartsInside) {
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 5.0 - std::sqrt(2.0), 1e-12);  // the corner of the turned square
 
-  CapsuleCollider capsule{Vec3(0, 0, -1), Vec3(0, 0, 1), 0.5};
+  CapsuleCollider capsule{Vec3(0, 0, -1), Vec3(0, 0, 1), 0.5, Material{}};
   hit = rayVsCapsule(Vec3(-5, 0, 0.3), Vec3::UnitX(), 10.0, capsule, 0.0);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 4.5, kTol);
@@ -148,8 +148,8 @@ TEST(SweptSpheres, TimeOfImpact) {
 
 TEST(WorldColliders, ValidatesAddsAndRemoves) {
   World world;
-  EXPECT_FALSE(world.addPlane(PlaneCollider{Vec3::Zero(), 0.0}).isOk());
-  EXPECT_FALSE(world.addSphere(SphereCollider{Vec3::Zero(), -1.0}).isOk());
+  EXPECT_FALSE(world.addPlane(PlaneCollider{Vec3::Zero(), 0.0, Material{}}).isOk());
+  EXPECT_FALSE(world.addSphere(SphereCollider{Vec3::Zero(), -1.0, Material{}}).isOk());
   BoxCollider flat;
   flat.half_extents = Vec3(1, 0, 1);
   EXPECT_FALSE(world.addBox(flat).isOk());
@@ -162,7 +162,7 @@ TEST(WorldColliders, ValidatesAddsAndRemoves) {
   EXPECT_TRUE(world.colliders().empty());
 
   // Scaled normals are normalised with the offset: 2z < 4 is z < 2.
-  const auto plane = world.addPlane(PlaneCollider{Vec3(0, 0, 2), 4.0});
+  const auto plane = world.addPlane(PlaneCollider{Vec3(0, 0, 2), 4.0, Material{}});
   ASSERT_TRUE(plane.isOk());
   EXPECT_NEAR(world.colliders().planes[0].offset, 2.0, kTol);
   const auto sphere = world.addSphere(SphereCollider{});

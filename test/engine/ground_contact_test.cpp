@@ -32,7 +32,9 @@ TEST_P(BallOnGround, BouncesToTheRightHeightsThenRests) {
   const auto height = [&] { return world.particles().positions()(2, 0) - radius; };
   const auto vz = [&] { return world.particles().velocities()(2, 0); };
 
-  // Apexes of the first two bounces: h_k = e^(2k) h_0 = 0.25 and 0.0625 m.
+  // Apexes of the first two bounces: h_k = e^(2k) h_0 = 0.25 and 0.0625 m. Ten substeps: the
+  // contact is found after the substep, up to |v| h inside the ground, which shifts an apex by up
+  // to e |v| h (about 4 mm at the first bounce): hence 2 cm and 5 mm tolerances.
   std::vector<Real> apexes;
   Real highest = 0.0;
   bool rising = false;
@@ -49,7 +51,7 @@ TEST_P(BallOnGround, BouncesToTheRightHeightsThenRests) {
   }
   ASSERT_EQ(apexes.size(), 2u);
   EXPECT_NEAR(apexes[0], 0.25 * drop, 0.02 * drop);
-  EXPECT_NEAR(apexes[1], 0.0625 * drop, 0.01 * drop);
+  EXPECT_NEAR(apexes[1], 0.0625 * drop, 0.005 * drop);
 
   // Then it settles and stays: still, and sunk no deeper than the slop.
   for (int s = 0; s < 600; ++s) world.step();

@@ -151,7 +151,7 @@ TEST(Links, LinkedParticlesDoNotCollideUnlessAsked) {
     // Radii 0.05 each, held 0.08 apart by a rod: they overlap.
     const ParticleId a = addAt(world, Vec3(0, 0, 0));
     const ParticleId b = addAt(world, Vec3(0.08, 0, 0));
-    const ParticleId c = addAt(world, Vec3(0.16, 0, 0));  // overlaps b, not linked to it
+    addAt(world, Vec3(0.16, 0, 0));  // overlaps b, not linked to it
     ASSERT_TRUE(world.addRod(Rod{a, b, 0.08}).isOk());
     world.step();
     // The rod always counts; a-b only when linked pairs collide; b-c always.

@@ -51,8 +51,11 @@ TEST(ParticleCollision, HeadOnConservesMomentumAndScalesNormalVelocityByRestitut
     EXPECT_NEAR(relative.dot(normal), -e * v_sep_before, 1e-14) << "e = " << e;
     const Vec3 tangential_before = Vec3(3.0, 0.3, -0.1) - v_sep_before * normal;
     EXPECT_NEAR((relative - relative.dot(normal) * normal - tangential_before).norm(), 0.0, 1e-14);
-    if (e == 1.0) EXPECT_NEAR(world.kineticEnergy(), ke_before, 1e-13);
-    if (e < 1.0) EXPECT_LT(world.kineticEnergy(), ke_before);
+    if (e == 1.0) {
+      EXPECT_NEAR(world.kineticEnergy(), ke_before, 1e-13);
+    } else {
+      EXPECT_LT(world.kineticEnergy(), ke_before);
+    }
   }
 }
 

@@ -14,8 +14,8 @@ class Queries : public ::testing::Test {
     box.center = Vec3(5, 0, 0.5);
     box.half_extents = Vec3(0.5, 0.5, 0.5);
     box_ = *world_.addBox(box);
-    capsule_ = *world_.addCapsule(CapsuleCollider{Vec3(0, 5, 0), Vec3(0, 5, 2), 0.25});
-    sphere_ = *world_.addSphere(SphereCollider{Vec3(-5, 0, 1), 0.5});
+    capsule_ = *world_.addCapsule(CapsuleCollider{Vec3(0, 5, 0), Vec3(0, 5, 2), 0.25, Material{}});
+    sphere_ = *world_.addSphere(SphereCollider{Vec3(-5, 0, 1), 0.5, Material{}});
     ParticleSpec spec;
     spec.position = Vec3(0, 0, 1);
     spec.radius = 0.1;

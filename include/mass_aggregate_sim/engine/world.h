@@ -270,7 +270,7 @@ class World {
   std::uint64_t dense_springs_layout_ = ~std::uint64_t{0};
   std::size_t dense_springs_generators_ = 0;
   GeneratorId dense_springs_next_id_ = 0;
-  // Scratch of the contact phase; created on first use, not copied.
+  // The contact phase's buffers and warm-start impulses; created on first use.
   std::unique_ptr<ContactWorkspace> contact_workspace_;
 };
 
