@@ -93,10 +93,12 @@ inline void gatherBlock(const DenseSpring* block, const Eigen::Index m, const Po
   }
 }
 
+// With `energy`, also adds k (l - L)^2 / 2 of every spring (stretched ones only when pull_only)
+// to it, in order: the same sum addDensePairEnergy makes.
 void accumulateDensePairForces(const std::vector<DenseSpring>& springs,
                                const Eigen::Ref<const Vec3Array>& x,
                                const Eigen::Ref<const Vec3Array>& v, const bool pull_only,
-                               Eigen::Ref<Vec3Array> force) {
+                               Eigen::Ref<Vec3Array> force, Real* energy) {
   Real d[kBlock][3];
   BlockArray squared;
   BlockArray length;
@@ -108,6 +110,13 @@ void accumulateDensePairForces(const std::vector<DenseSpring>& springs,
     gatherBlock(block, m, x, d, squared);
     length.head(m) = squared.head(m).sqrt();
     inverse_length.head(m) = length.head(m).inverse();
+    if (energy) {
+      for (Eigen::Index j = 0; j < m; ++j) {
+        const Real extension = length[j] - block[j].rest_length;
+        if (pull_only && extension <= 0.0) continue;
+        *energy += 0.5 * block[j].stiffness * extension * extension;
+      }
+    }
     for (Eigen::Index j = 0; j < m; ++j) {
       const DenseSpring& s = block[j];
       Real f[3];
@@ -189,13 +198,40 @@ inline Vec3 dampedHarmonicPosition(const Vec3& x0, const Vec3& v0, const Real w2
   return std::exp(-beta * t) * (x0 * c + (v0 + beta * x0) * s);
 }
 
+// Elastic energy of the generators that are not springs between two particles (anchored springs
+// and bungees, stiff springs), at positions x.
+Real nonPairPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles,
+                            const Eigen::Ref<const Vec3Array>& x) {
+  const auto index = [&particles](const ParticleId id) {
+    return particles.denseIndexUnchecked(id);
+  };
+  const auto elastic = [](const Real stiffness, const Real extension) {
+    return 0.5 * stiffness * extension * extension;
+  };
+  Real energy = 0.0;
+  for (const AnchoredSpring& s : generators.anchored_springs) {
+    energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length);
+  }
+  for (const AnchoredBungee& s : generators.anchored_bungees) {
+    const Real extension = (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length;
+    if (extension > 0.0) energy += elastic(s.stiffness, extension);
+  }
+  for (const StiffSpring& s : generators.stiff_springs) {
+    energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm());
+  }
+  return energy;
+}
+
 }  // namespace
 
 void accumulateGeneratorForces(const ForceGenerators& generators, const ParticleStore& particles,
                                const Eigen::Ref<const Vec3Array>& x,
                                const Eigen::Ref<const Vec3Array>& v, const Real gravity_magnitude,
                                const Real dt, Eigen::Ref<Vec3Array> force,
-                               const DenseSprings* dense) {
+                               const DenseSprings* dense, Real* elastic_energy) {
+  // Elastic energy as a by-product needs the dense springs; the other kinds are summed after.
+  Real spring_energy = 0.0;
+  Real* const by_product = dense && elastic_energy ? &spring_energy : nullptr;
   const auto index = [&particles](const ParticleId id) {
     return particles.denseIndexUnchecked(id);
   };
@@ -208,13 +244,13 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
   }
 
   if (dense) {
-    accumulateDensePairForces(dense->springs, x, v, false, force);
+    accumulateDensePairForces(dense->springs, x, v, false, force, by_product);
   } else {
     accumulatePairForces(generators.springs, particles, x, v, false, force);
   }
   accumulateAnchoredForces(generators.anchored_springs, particles, x, v, false, force);
   if (dense) {
-    accumulateDensePairForces(dense->bungees, x, v, true, force);
+    accumulateDensePairForces(dense->bungees, x, v, true, force, by_product);
   } else {
     accumulatePairForces(generators.bungees, particles, x, v, true, force);
   }
@@ -241,6 +277,11 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
     // The constant acceleration that carries x0 to target in one step: x0 + v0 dt + a dt^2 = target
     const Vec3 acceleration = (target - x0 - v0 * dt) / (dt * dt);
     force.col(i) += acceleration / inverse_mass;
+  }
+
+  if (elastic_energy) {
+    *elastic_energy = by_product ? spring_energy + nonPairPotentialEnergy(generators, particles, x)
+                                 : generatorPotentialEnergy(generators, particles, dense);
   }
 }
 

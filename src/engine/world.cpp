@@ -330,6 +330,7 @@ void World::clear() {
 void World::invalidateCaches() {
   verlet_history_h_ = 0.0;
   acceleration_valid_ = false;
+  forces_ahead_valid_ = false;
   energy_known_ = false;
 }
 
@@ -418,13 +419,13 @@ void World::step() {
   }
   ++steps_since_origin_;
   ++step_count_;
-  detectDivergence();
   // Contact resolution and links remove energy but their position corrections may add a little:
   // a step with contacts takes a new reference instead of being judged.
   const bool had_contacts = contactsActive() && last_contact_stats_.contacts > 0;
-  if (guard_energy && divergence_count_ == divergences_before && !had_contacts) {
+  if (guard_energy && !had_contacts) {
     checkEnergyGrowth(config_.dt);
   } else {
+    detectDivergence();
     energy_known_ = false;
   }
   if (divergence_count_ != divergences_before) applyDivergencePolicy();
@@ -540,7 +541,15 @@ bool World::energyGuardApplies() const {
 
 void World::checkEnergyGrowth(const Real dt) {
   ++steps_since_energy_reference_;
-  const auto [free_energy, gravitational] = guardEnergies();
+  const StepEnergies energies = guardEnergiesAfterStep();
+  if (!energies.finite) {
+    // Not judged: a non-finite value is the divergence to report (and the energy meaningless).
+    energy_known_ = false;
+    detectDivergence();
+    return;
+  }
+  const Real free_energy = energies.free;
+  const Real gravitational = energies.gravitational;
   const Real energy = free_energy + gravitational;
   // Allowances: truncation of a constant force (explicit Euler gains m g^2 h^2 / 2 a substep),
   // and round-off in the sums.
@@ -569,21 +578,61 @@ void World::checkEnergyGrowth(const Real dt) {
   energy_known_ = false;
 }
 
-std::pair<Real, Real> World::guardEnergies() const {
+World::ParticleEnergies World::particleEnergies() const {
   const Real* const x = particles_.positions().data();
   const Real* const v = particles_.velocities().data();
   const Real* const mass = mass_.data();
   const Vec3& g = config_.gravity;
-  Real kinetic_twice = 0.0;
-  Real gravitational = 0.0;
+  ParticleEnergies sums;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const Real* const p = x + 3 * i;
     const Real* const u = v + 3 * i;
-    kinetic_twice += mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    gravitational -= mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
+    sums.kinetic_twice += mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    sums.gravitational -= mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
+    // 0 * value is 0 for every finite value and NaN for Inf or NaN.
+    sums.finite_probe +=
+        (p[0] * 0.0 + p[1] * 0.0 + p[2] * 0.0) + (u[0] * 0.0 + u[1] * 0.0 + u[2] * 0.0);
   }
-  return {0.5 * kinetic_twice + generatorPotentialEnergy(generators_, particles_, denseSprings()),
-          gravitational};
+  return sums;
+}
+
+std::pair<Real, Real> World::guardEnergies() const {
+  const ParticleEnergies sums = particleEnergies();
+  return {
+      0.5 * sums.kinetic_twice + generatorPotentialEnergy(generators_, particles_, denseSprings()),
+      sums.gravitational};
+}
+
+bool World::forcesAheadPossible() const {
+  // The next step must start from this state with one substep of the same h: no contact phase
+  // (it would move particles after the forces), no external force, dense springs up to date.
+  return config_.integrator == Integrator::kSemiImplicitEuler && substeps_used_ == 1 &&
+         config_.substeps == 1 && !has_external_force_ && !contactsActive() &&
+         denseSprings() != nullptr;
+}
+
+World::StepEnergies World::guardEnergiesAfterStep() {
+  const ParticleEnergies sums = particleEnergies();
+  StepEnergies energies;
+  energies.gravitational = sums.gravitational;
+  energies.finite = sums.finite_probe == 0.0;
+  if (!energies.finite) return energies;
+  if (!forcesAheadPossible()) {
+    energies.free = 0.5 * sums.kinetic_twice +
+                    generatorPotentialEnergy(generators_, particles_, denseSprings());
+    return energies;
+  }
+  // The forces integrateSemiImplicitEuler would compute first thing next step, the same calls on
+  // the same state, so the same bits; their spring lengths give the elastic energy.
+  const auto x = particles_.positions();
+  const auto v = particles_.velocities();
+  forces_ahead_.setZero(3, x.cols());
+  Real elastic = 0.0;
+  accumulateGeneratorForces(generators_, particles_, x, v, config_.gravity.norm(), config_.dt,
+                            forces_ahead_, denseSprings(), &elastic);
+  forces_ahead_valid_ = true;
+  energies.free = 0.5 * sums.kinetic_twice + elastic;
+  return energies;
 }
 
 void World::applyDivergencePolicy() {

@@ -74,7 +74,12 @@ void World::integrateSemiImplicitEuler(const Real h) {
   auto x = particles_.positions();
   auto v = particles_.velocities();
   const bool has_forces = !generators_.empty() || has_external_force_;
-  if (has_forces) {
+  const bool ahead =
+      forces_ahead_valid_ && !has_external_force_ && forces_ahead_.cols() == acceleration_.cols();
+  forces_ahead_valid_ = false;
+  if (has_forces && ahead) {
+    acceleration_.swap(forces_ahead_);  // evaluated at this state by the energy guard
+  } else if (has_forces) {
     if (has_external_force_) {
       acceleration_ = particles_.forces();
     } else {

@@ -33,12 +33,14 @@ DenseSprings resolveDenseSprings(const ForceGenerators& generators, const Partic
 // size as the store), to `force`. A pure function of its arguments, so RK4 can call it per stage.
 // dt is the step the stiff springs solve over; gravity_magnitude feeds buoyancy. `dense`, when
 // given, must be resolveDenseSprings() of the same generators and store: the springs and bungees
-// then come from it (same forces, same order).
+// then come from it (same forces, same order). `elastic_energy`, when given (with `dense`),
+// receives the generators' elastic energy at x, the springs' from the lengths the force pass
+// computes.
 void accumulateGeneratorForces(const ForceGenerators& generators, const ParticleStore& particles,
                                const Eigen::Ref<const Vec3Array>& x,
                                const Eigen::Ref<const Vec3Array>& v, Real gravity_magnitude,
                                Real dt, Eigen::Ref<Vec3Array> force,
-                               const DenseSprings* dense = nullptr);
+                               const DenseSprings* dense = nullptr, Real* elastic_energy = nullptr);
 
 // Elastic energy stored in springs, anchored springs, stretched bungees and stiff springs; `dense`
 // as for accumulateGeneratorForces.

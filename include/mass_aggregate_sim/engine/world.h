@@ -180,9 +180,27 @@ class World {
   void detectDivergence();
   // Energy guard bookkeeping around one step; see WorldConfig::energy_growth_limit.
   bool energyGuardApplies() const;
+  // Also detects a non-finite position or velocity (as detectDivergence) in the same pass.
   void checkEnergyGrowth(Real dt);
-  // Kinetic + elastic and gravitational energy, from the cached masses (no division).
+  // One pass over the particles: twice the kinetic energy and the gravitational energy (cached
+  // masses, no division), and sum(0 * x) + sum(0 * v), which is 0 unless a value is not finite.
+  struct ParticleEnergies {
+    Real kinetic_twice = 0.0;
+    Real gravitational = 0.0;
+    Real finite_probe = 0.0;
+  };
+  ParticleEnergies particleEnergies() const;
+  // Kinetic + elastic and gravitational energy.
   std::pair<Real, Real> guardEnergies() const;
+  // The same after a step, with the finite probe; where it can, it evaluates the next step's forces
+  // at the same time and takes the elastic energy from their spring lengths.
+  struct StepEnergies {
+    Real free = 0.0;
+    Real gravitational = 0.0;
+    bool finite = true;
+  };
+  StepEnergies guardEnergiesAfterStep();
+  bool forcesAheadPossible() const;
   void applyDivergencePolicy();
   // Contact phase (world_contacts.cpp), run after each substep's integration.
   bool contactsActive() const;
@@ -265,6 +283,11 @@ class World {
   std::vector<Material> slot_material_;
   std::vector<std::uint8_t> slot_has_material_;
   std::size_t custom_material_count_ = 0;
+  // Semi-implicit Euler under the energy guard: the generator forces at the state a step ended
+  // in, computed with the guard's elastic energy and used by the next step unless anything
+  // changed since (invalidateCaches). Not copied: a copy recomputes them.
+  Vec3Array forces_ahead_;
+  bool forces_ahead_valid_ = false;
   DenseSprings dense_springs_;
   // What dense_springs_ was built from; a copied world starts stale and rebuilds.
   std::uint64_t dense_springs_layout_ = ~std::uint64_t{0};
