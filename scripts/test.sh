@@ -17,6 +17,8 @@ run_status=$?
 set -e
 grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ (order|energy) \]|^\[Testcase|FAILURE|ERROR" \
   "${WS_DIR}/test.log" | tail -n 300 || true
+# The soak test's figures (requests handled, RSS) are in its result file, not in the log.
+grep -ho "\[ soak \][^&<]*" "${results}"/*/rosunit-soak.xml 2>/dev/null || true
 if [ "${run_status}" -ne 0 ]; then
   echo "catkin_make run_tests exited ${run_status}; see ${WS_DIR}/test.log" >&2
 fi

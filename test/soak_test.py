@@ -13,6 +13,7 @@ import time
 import unittest
 import xmlrpc.client
 
+import rosgraph
 import rosnode
 import rospy
 import rostest
@@ -23,6 +24,7 @@ from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRe
 from sim_client import SERVICES, spec
 
 LIVE_PER_CLIENT = 12  # particles a client keeps alive at most (4 x 12 + 10 < max_particles)
+LINKS_PER_CLIENT = 15  # links a client keeps at most (4 x 15 + 9 < max_links)
 
 
 def vec(x, y, z):
@@ -33,7 +35,7 @@ def vec(x, y, z):
 
 def node_pid(node_name):
     """The node's pid through the ROS node API (getPid), not by searching process names."""
-    uri = rosnode.get_api_uri(rospy.get_master(), node_name, skip_cache=True)
+    uri = rosgraph.Master('/soak_test').lookupNode(node_name)
     code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/soak_test')
     assert code == 1, 'getPid failed'
     return pid
@@ -119,13 +121,13 @@ class Client(threading.Thread):
             pid, _ = self.own()
             self.call('apply_force', True, pid, '', '', vec(0.0, 0.0, 2.0),
                       ApplyForceRequest.ONE_STEP, 0.0)
-        elif r < 0.55:
+        elif r < 0.55 and len(self.links) < LINKS_PER_CLIENT:
             (a, _), (b, _) = self.random.sample(self.live, 2)
             answer = self.call('add_link', True, AddLinkRequest(type='spring', a=a, b=b,
                                                                  stiffness=5.0, rest_length=-1.0))
             if answer is not None and answer.success:
                 self.links.append((answer.link_id, a, b))
-        elif r < 0.60 and self.links:
+        elif r < 0.60 and self.links or len(self.links) >= LINKS_PER_CLIENT:
             link_id, _, _ = self.links.pop()
             self.call('remove_link', True, link_id)
         # Invalid requests, each refused for a different rule.
@@ -181,16 +183,21 @@ class SoakTest(unittest.TestCase):
         stats = {'count': 0, 'last': None}
         lock = threading.Lock()
 
+        rtf = []
+
         def on_stats(msg):
             with lock:
                 stats['count'] += 1
                 stats['last'] = msg
+                if not msg.paused:
+                    rtf.append(msg.real_time_factor)
 
         rospy.Subscriber(ns + '/stats', SimStats, on_stats, queue_size=50)
         time.sleep(2.0)
         with lock:
             start_count = stats['count']
             start_commands = stats['last'].commands_applied
+            del rtf[:]
         start = time.time()
         rss_start = rss_kib(pid)
         samples = [rss_start]
@@ -226,10 +233,10 @@ class SoakTest(unittest.TestCase):
         rss_first_third = max(samples[:max(1, len(samples) // 3)])
         print('[ soak ] %d clients, %.1f s: %d requests handled (%d valid, %d invalid), %.0f/s; '
               '~stats %.1f Hz (expected %.0f); RSS start %d KiB, peak %d KiB, first third peak '
-              '%d KiB; real-time factor %.2f, overruns %d; %d errors'
+              '%d KiB; real-time factor mean %.3f, min %.3f, overruns %d; %d errors'
               % (clients, elapsed, valid + invalid, valid, invalid, (valid + invalid) / elapsed,
                  stats_rate, publish_rate, rss_start, peak, rss_first_third,
-                 last.real_time_factor, last.overruns, len(errors)))
+                 sum(rtf) / max(1, len(rtf)), min(rtf or [0.0]), last.overruns, len(errors)))
         sys.stdout.flush()
         self.assertEqual(errors, [], '\n'.join(errors[:20]))
         self.assertGreater(valid, 1000)

@@ -152,14 +152,14 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
 
   report.stable = worst_ratio < 1.0;
   report.stable_dt = worst_stable_substep * static_cast<Real>(substeps);
-  if (worst_stable_substep <= 0.0) {
+  if (!(worst_stable_substep > 0.0)) {  // also NaN, from an omega that overflowed
     report.substeps_needed = 0;
   } else if (std::isinf(worst_stable_substep)) {
     report.substeps_needed = 1;
   } else {
     // the fewest s with dt / s < h*
     const Real needed = std::floor(dt / worst_stable_substep) + 1.0;
-    report.substeps_needed = needed > kMaxSubsteps ? 0 : static_cast<int>(needed);
+    report.substeps_needed = needed <= kMaxSubsteps ? static_cast<int>(needed) : 0;
   }
   if (!report.stable) {
     char text[320];
