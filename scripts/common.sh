@@ -3,8 +3,10 @@
 set -euo pipefail
 
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# The workspace lives in an ignored folder of the repo unless MAS_WS names another place.
-WS_DIR="${MAS_WS:-${REPO_DIR}/.ws}"
+# The catkin workspace, outside the source tree: a workspace inside the package would put a second
+# copy of every executable under the package folder, and `rosrun mass_aggregate_sim node` would
+# then find several. MAS_WS names another place.
+WS_DIR="${MAS_WS:-${HOME}/mass_aggregate_sim_ws}"
 # Debian's ROS needs Debian's python (catkin_pkg), not a pyenv interpreter first on PATH.
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 

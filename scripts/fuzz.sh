@@ -33,6 +33,11 @@ for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
     tail -n 30 "${fuzz_dir}/${target}.build.log"
     echo "fuzz target ${target} failed to build" >&2
     status=1
+    cat >"${out_dir}/fuzz-${target}.xml" <<XML
+<testsuite name="fuzz" tests="1" failures="1" errors="0">
+  <testcase classname="fuzz" name="${target}"><failure message="build failed: see ${fuzz_dir}/${target}.build.log"/></testcase>
+</testsuite>
+XML
     continue
   }
   work_corpus="${fuzz_dir}/${corpus_name}"

@@ -1,6 +1,6 @@
 // libFuzzer target: arbitrary scene YAML, arbitrary XmlRpc trees and arbitrary request fields
 // through the node's scene loader and request checks, no ROS master (see scene_ops.h).
-// fuzz-sources: src/node/scene_loader.cpp src/node/xmlrpc_reader.cpp src/node/links.cpp src/node/simulation.cpp src/node/conversions.cpp src/node/input_limits.cpp
+// fuzz-sources: src/node/scene_loader.cpp src/node/scene_contacts.cpp src/node/xmlrpc_reader.cpp src/node/links.cpp src/node/simulation.cpp src/node/conversions.cpp src/node/input_limits.cpp
 // fuzz-flags: -lyaml-cpp -lxmlrpcpp -lroscpp_serialization -lrostime -lcpp_common
 #include "scene_ops.h"
 
