@@ -30,6 +30,13 @@ bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal
   return true;
 }
 
+Real ContactResolver::lastImpulse(const std::uint64_t key) const {
+  const auto it = std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), key,
+                                   [](const std::pair<std::uint64_t, Real>& entry,
+                                      const std::uint64_t k) { return entry.first < k; });
+  return it != warm_impulses_.end() && it->first == key ? it->second : 0.0;
+}
+
 void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
@@ -39,6 +46,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
     displacement_.col(i).setZero();
   }
   touched_.clear();
+  last_substep_ = h;
   const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
     displacement_.setZero(3, n);

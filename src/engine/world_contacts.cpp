@@ -249,6 +249,25 @@ std::vector<ParticleId> World::overlapBox(const Vec3& center, const Vec3& half_e
   return particlesOverlappingBox(particles_, center, half_extents);
 }
 
+std::vector<LinkTension> World::linkTensions() const {
+  std::vector<LinkTension> out;
+  out.reserve(links_.size());
+  const ContactResolver* resolver = contact_workspace_ ? &contact_workspace_->resolver : nullptr;
+  const Real h = resolver ? resolver->lastSubstep() : 0.0;
+  const auto add = [&](const GeneratorId id) {
+    // F = J / h: the impulse the constraint applied over the substep, as a mean force.
+    const Real tension = h > 0.0 ? resolver->lastImpulse(linkContactKey(id)) / h : 0.0;
+    out.push_back(LinkTension{id, tension});
+  };
+  for (const Cable& l : links_.cables) add(l.id);
+  for (const Rod& l : links_.rods) add(l.id);
+  for (const AnchoredCable& l : links_.anchored_cables) add(l.id);
+  for (const AnchoredRod& l : links_.anchored_rods) add(l.id);
+  std::sort(out.begin(), out.end(),
+            [](const LinkTension& x, const LinkTension& y) { return x.id < y.id; });
+  return out;
+}
+
 // --- the contact phase ---
 
 bool World::contactsActive() const {

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
+#include <vector>
 
 #include "mass_aggregate_sim/node/conversions.h"
 
@@ -160,23 +161,20 @@ void MarkerBuilder::addLinks(const engine::World& world, const ros::Time& stamp,
     const Vec3 p = at(s.particle);
     segment(p, s.anchor, springTension(p, s.anchor, s.stiffness, 0.0, false));
   }
-  // Constraint links carry no force the builder could show: a cable is red when taut (at its
-  // maximum length) and white when slack; a rod, which is always exact, is amber.
-  const auto cable = [&](const Vec3& a, const Vec3& b, const Real max_length) {
-    const bool taut = (a - b).norm() >= max_length * (1.0 - 1e-3);
-    segment(a, b, taut ? tension_scale_ : 0.0);
-  };
-  const auto rod = [&](const Vec3& a, const Vec3& b) {
-    lines.points.push_back(toPointMsg(a));
-    lines.points.push_back(toPointMsg(b));
-    lines.colors.push_back(color(1.0f, 0.75f, 0.2f));
-    lines.colors.push_back(color(1.0f, 0.75f, 0.2f));
+  // Cables and rods are constraints: their tension is the force the resolver applied in the last
+  // substep (World::linkTensions, sorted by id), negative for a rod in compression.
+  const std::vector<engine::LinkTension> tensions = world.linkTensions();
+  const auto tension = [&](const engine::GeneratorId id) -> Real {
+    const auto it = std::lower_bound(
+        tensions.begin(), tensions.end(), id,
+        [](const engine::LinkTension& t, const engine::GeneratorId key) { return t.id < key; });
+    return it != tensions.end() && it->id == id ? it->tension : 0.0;
   };
   const engine::Links& links = world.links();
-  for (const auto& c : links.cables) cable(at(c.a), at(c.b), c.max_length);
-  for (const auto& c : links.anchored_cables) cable(at(c.particle), c.anchor, c.max_length);
-  for (const auto& r : links.rods) rod(at(r.a), at(r.b));
-  for (const auto& r : links.anchored_rods) rod(at(r.particle), r.anchor);
+  for (const auto& c : links.cables) segment(at(c.a), at(c.b), tension(c.id));
+  for (const auto& c : links.anchored_cables) segment(at(c.particle), c.anchor, tension(c.id));
+  for (const auto& r : links.rods) segment(at(r.a), at(r.b), tension(r.id));
+  for (const auto& r : links.anchored_rods) segment(at(r.particle), r.anchor, tension(r.id));
   if (!lines.points.empty()) out.markers.push_back(std::move(lines));
 }
 

@@ -104,6 +104,39 @@ TEST(MarkersTest, LinksAreColouredByTension) {
   EXPECT_FLOAT_EQ(slack.b, 1.0f);
 }
 
+TEST(MarkersTest, CablesAndRodsAreColouredByTheirTension) {
+  engine::WorldConfig config;
+  config.gravity = Vec3(0, 0, -9.81);
+  config.substeps = 4;
+  engine::World world(config);
+  const auto hanging = add(world, Vec3(0, 0, -1), 0.1);  // 1 kg below a cable: +9.81 N
+  const auto standing = add(world, Vec3(3, 0, 1), 0.1);  // 1 kg on top of a rod: -9.81 N
+  ASSERT_TRUE(
+      world.addAnchoredCable(engine::AnchoredCable{hanging, Vec3(0, 0, 0), 1.0, 0.0}).isOk());
+  // 1 m from its anchor on a 2 m cable: slack.
+  ASSERT_TRUE(
+      world.addAnchoredCable(engine::AnchoredCable{standing, Vec3(3, 0, 2), 2.0, 0.0}).isOk());
+  ASSERT_TRUE(world.addAnchoredRod(engine::AnchoredRod{standing, Vec3(3, 0, 0), 1.0}).isOk());
+  for (int s = 0; s < 120; ++s) world.step();
+  MarkerBuilder builder("world", 2.0 * 9.81);  // the weight is half the scale
+  const auto array = builder.build(world, ros::Time(1.0));
+  const Marker* lines = nullptr;
+  for (const auto& m : array.markers) {
+    if (m.ns == "links") lines = &m;
+  }
+  ASSERT_NE(lines, nullptr);
+  ASSERT_EQ(lines->colors.size(), 6u);        // anchored cables first, then the rod
+  EXPECT_FLOAT_EQ(lines->colors[0].r, 1.0f);  // half stretched: pink
+  EXPECT_NEAR(lines->colors[0].g, 0.5f, 0.01f);
+  EXPECT_NEAR(lines->colors[0].b, 0.5f, 0.01f);
+  EXPECT_FLOAT_EQ(lines->colors[2].r, 1.0f);  // slack: white
+  EXPECT_FLOAT_EQ(lines->colors[2].g, 1.0f);
+  EXPECT_FLOAT_EQ(lines->colors[2].b, 1.0f);
+  EXPECT_NEAR(lines->colors[4].r, 0.5f, 0.01f);  // half compressed: light blue
+  EXPECT_NEAR(lines->colors[4].g, 0.5f, 0.01f);
+  EXPECT_FLOAT_EQ(lines->colors[4].b, 1.0f);
+}
+
 TEST(MarkersTest, CollidersAreDrawnAsTheirShapes) {
   engine::World world;
   ASSERT_TRUE(world.addPlane(engine::PlaneCollider{}).isOk());

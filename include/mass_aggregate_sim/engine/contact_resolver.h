@@ -40,6 +40,10 @@ class ContactResolver {
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
   void clearWarmStart() { warm_impulses_.clear(); }
+  // The total normal impulse the contact named `key` ended the last substep with (the impulse
+  // kept for warm starting; 0 when it did not act), and that substep's length (0 before any).
+  Real lastImpulse(std::uint64_t key) const;
+  Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
     for (const auto& [key, impulse] : warm_impulses_) {
@@ -70,6 +74,7 @@ class ContactResolver {
   // (contact key, normal impulse) of the last substep, sorted by key: the warm start.
   std::vector<std::pair<std::uint64_t, Real>> warm_impulses_;
   std::vector<std::pair<std::uint64_t, Real>> next_warm_impulses_;
+  Real last_substep_ = 0.0;
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
   std::vector<std::uint32_t> touched_;

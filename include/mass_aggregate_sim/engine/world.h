@@ -34,6 +34,16 @@ struct DivergenceEvent {
   std::string what;
 };
 
+// The force a cable or rod applied in the last substep, from its constraint's total impulse J over
+// that substep of length h: tension = J / h (N). The impulse acts on the link's first particle
+// (a, or the anchored link's particle) along the unit vector towards its other end, so
+// tension > 0 pulls the ends together (a taut cable, a stretched rod), tension < 0 pushes them
+// apart (only a rod, in compression), and 0 means the link did not act (a slack cable).
+struct LinkTension {
+  GeneratorId id = 0;
+  Real tension = 0.0;
+};
+
 // The particle world: particles, force generators, and a fixed-step integrator. Time is passed in
 // (step, advance), never read from a clock. All mutation goes through this class so the caches it
 // keeps (d^dt, Verlet history, last acceleration) stay consistent; the same calls in the same
@@ -91,6 +101,11 @@ class World {
   Result<GeneratorId> addAnchoredCable(const AnchoredCable& cable);
   Result<GeneratorId> addAnchoredRod(const AnchoredRod& rod);
   const Links& links() const { return links_; }
+  // Every live link's tension in the last substep (LinkTension), sorted by id. A link added since
+  // the last step, or every link after a particle was removed (the resolver forgets its warm
+  // start then), reads 0 until the next step. Reads what the resolver kept for warm starting:
+  // no work during the step, O(links log links) here.
+  std::vector<LinkTension> linkTensions() const;
 
   // --- contacts ---
   Status setCollisionSettings(const CollisionSettings& settings);
