@@ -27,7 +27,13 @@ inline XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node) {
     // are strings there, only "1.0e+6" is a float.
     static const std::regex integer("[-+]?(0|[1-9][0-9]*)");
     static const std::regex real("[-+]?([0-9]+\\.[0-9]*|\\.[0-9]+)([eE][-+][0-9]+)?");
-    if (std::regex_match(text, integer)) return XmlRpc::XmlRpcValue(std::stoi(text));
+    if (std::regex_match(text, integer)) {
+      // XML-RPC integers are 32-bit (rosparam refuses larger ones); keep a larger one as a
+      // double, so the loader sees a number outside every integer field's range.
+      const double number = std::stod(text);
+      if (std::abs(number) <= 2147483647.0) return XmlRpc::XmlRpcValue(static_cast<int>(number));
+      return XmlRpc::XmlRpcValue(number);
+    }
     if (std::regex_match(text, real)) return XmlRpc::XmlRpcValue(std::stod(text));
     if (text == ".nan" || text == ".NaN") return XmlRpc::XmlRpcValue(std::nan(""));
     if (text == ".inf" || text == ".Inf") return XmlRpc::XmlRpcValue(HUGE_VAL);
