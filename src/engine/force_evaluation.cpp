@@ -261,8 +261,9 @@ void accumulateGeneratorForces(const ForceGenerators& generators, const Particle
     const Real height = buoyancy.up.dot(x.col(i)) - buoyancy.surface_height;
     if (height >= buoyancy.max_depth) continue;
     const Real full = buoyancy.liquid_density * buoyancy.volume * gravity_magnitude;
-    const Real submerged =
-        height <= -buoyancy.max_depth ? 1.0 : (buoyancy.max_depth - height) / (2.0 * buoyancy.max_depth);
+    const Real submerged = height <= -buoyancy.max_depth
+                               ? 1.0
+                               : (buoyancy.max_depth - height) / (2.0 * buoyancy.max_depth);
     force.col(i) += full * submerged * buoyancy.up;
   }
 

@@ -31,7 +31,8 @@ void springJacobians(const Vec3& d, const Real stiffness, const Real rest_length
 
 }  // namespace
 
-void ImplicitEulerSolver::addBlock(const std::size_t row, const std::size_t col, const Mat3& block) {
+void ImplicitEulerSolver::addBlock(const std::size_t row, const std::size_t col,
+                                   const Mat3& block) {
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) {
       if (block(r, c) != 0.0) {

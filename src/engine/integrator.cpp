@@ -18,6 +18,15 @@ constexpr std::array<std::pair<Integrator, const char*>, 6> kNames{{
 
 }  // namespace
 
+const std::array<Integrator, 6>& allIntegrators() {
+  static const std::array<Integrator, 6> all = [] {
+    std::array<Integrator, 6> kinds{};
+    for (std::size_t i = 0; i < kNames.size(); ++i) kinds[i] = kNames[i].first;
+    return kinds;
+  }();
+  return all;
+}
+
 const char* integratorName(const Integrator integrator) {
   for (const auto& [kind, name] : kNames) {
     if (kind == integrator) return name;

@@ -50,7 +50,8 @@ bool eraseById(std::vector<Generator>& kind, const GeneratorId id) {
 
 }  // namespace
 
-World::World(const WorldConfig& config) : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
+World::World(const WorldConfig& config)
+    : implicit_solver_(std::make_unique<ImplicitEulerSolver>()) {
   const Status valid = setConfig(config);
   if (!valid) config_ = WorldConfig{};
 }
@@ -492,8 +493,9 @@ void World::detectDivergence() {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {
-      last_divergence_ = DivergenceEvent{step_count_, time(), particles_.idAt(i),
-                                         bad_x ? "position is not finite" : "velocity is not finite"};
+      last_divergence_ =
+          DivergenceEvent{step_count_, time(), particles_.idAt(i),
+                          bad_x ? "position is not finite" : "velocity is not finite"};
       ++divergence_count_;
       return;
     }

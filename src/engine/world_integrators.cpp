@@ -107,8 +107,8 @@ void World::integratePositionVerlet(const Real h) {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const Vec3 current = x.col(i);
     // x' = x + (x - x_prev) d^h + a h^2   (= 2x - x_prev + a h^2 undamped)
-    const Vec3 next = current + (current - previous.col(i)) * damping_factor_[i] +
-                      acceleration_.col(i) * (h * h);
+    const Vec3 next =
+        current + (current - previous.col(i)) * damping_factor_[i] + acceleration_.col(i) * (h * h);
     // (x' - x)/h is the velocity half a step back; adding a h/2 makes it second order at x'.
     v.col(i) = (next - current) / h + 0.5 * h * acceleration_.col(i);
     previous.col(i) = current;

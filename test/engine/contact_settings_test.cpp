@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "integrator_params.h"
 #include "mass_aggregate_sim/engine/world.h"
 
 namespace mass_aggregate_sim {
@@ -81,14 +82,7 @@ TEST_P(RestsAtOneSubstep, BallComesToRest) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestsAtOneSubstep,
-                         ::testing::Values(Integrator::kExplicitEuler,
-                                           Integrator::kSemiImplicitEuler,
-                                           Integrator::kPositionVerlet, Integrator::kVelocityVerlet,
-                                           Integrator::kRk4, Integrator::kImplicitEuler),
-                         [](const ::testing::TestParamInfo<Integrator>& info) {
-                           return std::string(integratorName(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestsAtOneSubstep, everyIntegrator(), integratorParamName);
 
 TEST(ContactDeterminism, SameCallsGiveBitIdenticalStatesAndCopiesContinueAlike) {
   const auto build = [] {

@@ -15,6 +15,7 @@
 #include <functional>
 #include <vector>
 
+#include "integrator_params.h"
 #include "mass_aggregate_sim/engine/world.h"
 
 namespace mass_aggregate_sim {
@@ -155,14 +156,7 @@ TEST_P(Lockstep, AResetWorldRepeatsItselfBitForBit) {
   EXPECT_EQ(fresh.stateHash(), first);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryIntegrator, Lockstep,
-                         ::testing::Values(Integrator::kExplicitEuler,
-                                           Integrator::kSemiImplicitEuler,
-                                           Integrator::kPositionVerlet, Integrator::kVelocityVerlet,
-                                           Integrator::kRk4, Integrator::kImplicitEuler),
-                         [](const ::testing::TestParamInfo<Integrator>& info) {
-                           return std::string(integratorName(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryIntegrator, Lockstep, everyIntegrator(), integratorParamName);
 
 }  // namespace
 }  // namespace engine

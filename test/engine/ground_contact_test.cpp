@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrator_params.h"
 #include "mass_aggregate_sim/engine/world.h"
 
 namespace mass_aggregate_sim {
@@ -66,14 +67,7 @@ TEST_P(BallOnGround, BouncesToTheRightHeightsThenRests) {
   (void)id;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllIntegrators, BallOnGround,
-                         ::testing::Values(Integrator::kExplicitEuler,
-                                           Integrator::kSemiImplicitEuler,
-                                           Integrator::kPositionVerlet, Integrator::kVelocityVerlet,
-                                           Integrator::kRk4, Integrator::kImplicitEuler),
-                         [](const ::testing::TestParamInfo<Integrator>& info) {
-                           return std::string(integratorName(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, BallOnGround, everyIntegrator(), integratorParamName);
 
 }  // namespace
 }  // namespace engine

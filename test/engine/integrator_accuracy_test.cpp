@@ -12,13 +12,6 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-const std::vector<Integrator> kAllIntegrators = {Integrator::kExplicitEuler,
-                                                 Integrator::kSemiImplicitEuler,
-                                                 Integrator::kPositionVerlet,
-                                                 Integrator::kVelocityVerlet,
-                                                 Integrator::kRk4,
-                                                 Integrator::kImplicitEuler};
-
 struct Oscillator {
   Real mass = 1.0;
   Real stiffness = 4.0;  // omega = 2 rad/s
@@ -80,7 +73,7 @@ Real measuredOrder(const Real coarse_error, const Real fine_error) {
 
 void expectOrderOnOscillator(const Oscillator& o, const char* label) {
   constexpr Real kDuration = 4.0;
-  for (const Integrator integrator : kAllIntegrators) {
+  for (const Integrator integrator : allIntegrators()) {
     const int n = coarseSteps(integrator);
     const Real coarse = oscillatorError(o, integrator, n, kDuration);
     const Real fine = oscillatorError(o, integrator, 2 * n, kDuration);
@@ -124,7 +117,7 @@ TEST(IntegratorConvergence, ProjectileWithoutDrag) {
     const Vec3 exact = x0 + v0 * kDuration + 0.5 * gravity * kDuration * kDuration;
     return (world.particles().positions().col(0) - exact).norm();
   };
-  for (const Integrator integrator : kAllIntegrators) {
+  for (const Integrator integrator : allIntegrators()) {
     const Real coarse = error(integrator, 300);
     const Real fine = error(integrator, 600);
     if (integratorOrder(integrator) == 1) {

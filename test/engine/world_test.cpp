@@ -11,13 +11,6 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-const Integrator kAllIntegrators[] = {Integrator::kExplicitEuler,
-                                      Integrator::kSemiImplicitEuler,
-                                      Integrator::kPositionVerlet,
-                                      Integrator::kVelocityVerlet,
-                                      Integrator::kRk4,
-                                      Integrator::kImplicitEuler};
-
 ParticleSpec particleAt(const Vec3& position, const Real mass = 1.0) {
   ParticleSpec spec;
   spec.position = position;
@@ -60,7 +53,7 @@ WorldConfig configFor(const Integrator integrator) {
 }
 
 TEST(World, ImmovableParticlesNeverMove) {
-  for (const Integrator integrator : kAllIntegrators) {
+  for (const Integrator integrator : allIntegrators()) {
     World world(configFor(integrator));
     buildScene(world);
     const ParticleId fixed = world.particles().idAt(world.particles().size() - 1);
@@ -79,7 +72,7 @@ TEST(World, ImmovableParticlesNeverMove) {
 }
 
 TEST(World, SameSceneAndStepsGiveBitIdenticalStates) {
-  for (const Integrator integrator : kAllIntegrators) {
+  for (const Integrator integrator : allIntegrators()) {
     World first(configFor(integrator));
     World second(configFor(integrator));
     buildScene(first);

@@ -288,7 +288,8 @@ TEST(InputValidationTest, ScenesKeepTheSameBounds) {
                    "scene.particles[0].position");
   expectSceneError("{particles: [{position: [0, 0, 0], velocity: [1.0e+6, 0, 0]}]}",
                    "scene.particles[0].velocity");
-  expectSceneError("{particles: [{position: [0, 0, 0], mass: 1.0e-12}]}", "scene.particles[0].mass");
+  expectSceneError("{particles: [{position: [0, 0, 0], mass: 1.0e-12}]}",
+                   "scene.particles[0].mass");
   expectSceneError("{particles: [{position: [0, 0, 0], radius: 5000}]}",
                    "scene.particles[0].radius");
   expectSceneError("{particles: [{name: world, position: [0, 0, 0]}]}", "scene.particles[0].name");

@@ -76,8 +76,9 @@ struct Buoyancy {
   GeneratorId id = 0;
 };
 
-// A spring too stiff to integrate, solved in closed form: the damped harmonic motion of the particle
-// about the anchor over the step gives the acceleration that lands it where the exact solution does.
+// A spring too stiff to integrate, solved in closed form: the damped harmonic motion of the
+// particle about the anchor over the step gives the acceleration that lands it where the exact
+// solution does.
 struct StiffSpring {
   ParticleId particle;
   Vec3 anchor = Vec3::Zero();

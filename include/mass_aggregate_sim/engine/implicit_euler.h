@@ -1,9 +1,8 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <vector>
 
 #include "mass_aggregate_sim/engine/force_generators.h"
 #include "mass_aggregate_sim/engine/particle_store.h"

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,9 @@ enum class Integrator {
   kRk4,                // classical Runge-Kutta, forces at every stage       (order 4)
   kImplicitEuler,      // linearised backward Euler, one sparse solve a step (order 1)
 };
+
+// Every integrator, in declaration order.
+const std::array<Integrator, 6>& allIntegrators();
 
 // Names as used in scenes and parameters: explicit_euler, semi_implicit_euler, position_verlet,
 // velocity_verlet, rk4, implicit_euler.

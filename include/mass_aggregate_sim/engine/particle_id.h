@@ -27,7 +27,9 @@ struct ParticleId {
     return a.index == b.index && a.generation == b.generation;
   }
   friend bool operator!=(const ParticleId& a, const ParticleId& b) { return !(a == b); }
-  friend bool operator<(const ParticleId& a, const ParticleId& b) { return a.packed() < b.packed(); }
+  friend bool operator<(const ParticleId& a, const ParticleId& b) {
+    return a.packed() < b.packed();
+  }
 };
 
 }  // namespace engine

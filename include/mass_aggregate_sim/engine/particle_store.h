@@ -24,7 +24,8 @@ struct ParticleSpec {
   std::string name;
 };
 
-// Checks a spec without adding it: finite numbers, inverse mass >= 0, damping in [0, 1], radius >= 0.
+// Checks a spec without adding it: finite numbers, inverse mass >= 0, damping in [0, 1], radius >=
+// 0.
 Status validateSpec(const ParticleSpec& spec);
 
 // Particles as a structure of arrays, densely packed so each attribute is one contiguous Eigen

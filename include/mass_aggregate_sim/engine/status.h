@@ -27,8 +27,9 @@ class Status {
 template <typename T>
 class Result {
  public:
-  Result(T value) : status_(Status::ok()), value_(std::move(value)) {}  // NOLINT: implicit on purpose
-  Result(Status status) : status_(std::move(status)), value_() {}      // NOLINT: implicit on purpose
+  Result(T value)
+      : status_(Status::ok()), value_(std::move(value)) {}         // NOLINT: implicit on purpose
+  Result(Status status) : status_(std::move(status)), value_() {}  // NOLINT: implicit on purpose
 
   bool isOk() const { return status_.isOk(); }
   explicit operator bool() const { return isOk(); }
