@@ -6,6 +6,8 @@ REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # The catkin workspace, outside the source tree: a workspace inside the package would put a second
 # copy of every executable under the package folder, and `rosrun mass_aggregate_sim node` would
 # then find several. MAS_WS names another place.
+# roslaunch keeps its logs under $HOME/.ros too, so make sure HOME is set.
+export HOME="${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}"
 WS_DIR="${MAS_WS:-${HOME}/mass_aggregate_sim_ws}"
 # Debian's ROS needs Debian's python (catkin_pkg), not a pyenv interpreter first on PATH.
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
