@@ -11,41 +11,25 @@
 #include <cstdint>
 
 #include "mass_aggregate_sim/engine/world.h"
+#include "scenario_common.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr Real kDt = 1.0 / 60.0;
-constexpr Real kDamping = 0.99;
-constexpr Real kRadius = 0.1;
+using bench::kRadius;
+using bench::unitParticle;
+
 constexpr Real kRestitution = 0.2;
 constexpr int kSettleSteps = 60;  // one second of simulated time, untimed
 constexpr int kMinPileLayers = 10;
-
-WorldConfig contactConfig() {
-  WorldConfig config;
-  config.dt = kDt;
-  config.integrator = Integrator::kSemiImplicitEuler;
-  config.gravity = Vec3(0.0, -9.81, 0.0);
-  return config;
-}
-
-ParticleSpec unitParticle(const Vec3& position) {
-  ParticleSpec spec;
-  spec.position = position;
-  spec.inverse_mass = 1.0;
-  spec.damping = kDamping;
-  spec.radius = kRadius;
-  return spec;
-}
 
 Material groundMaterial() { return Material{kRestitution, 0.0}; }
 
 // C: a square grid in the x-z plane, 0.5 m apart (no two particles touch), each sphere resting on
 // the ground plane y = 0. Only particle-ground contacts: particle collisions are off.
 World groundGridWorld(const std::int64_t n) {
-  World world(contactConfig());
+  World world(bench::scenarioConfig());
   world.addPlane(PlaneCollider{Vec3::UnitY(), 0.0, groundMaterial()});
   const auto side = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (std::int64_t i = 0; i < n; ++i) {
@@ -73,7 +57,7 @@ std::int64_t pileSide(const std::int64_t n) {
 // stays a pile (a cubic stack with room to move buckles) and the settling only absorbs the first
 // steps' sag under gravity.
 World pileWorld(const std::int64_t n, const Broadphase broadphase) {
-  World world(contactConfig());
+  World world(bench::scenarioConfig());
   CollisionSettings settings;
   settings.particle_collisions = true;
   settings.broadphase = broadphase;

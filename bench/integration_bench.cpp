@@ -5,34 +5,19 @@
 #include <cstdint>
 
 #include "mass_aggregate_sim/engine/world.h"
+#include "scenario_common.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr Real kDt = 1.0 / 60.0;
-constexpr Real kDamping = 0.99;
+using bench::unitParticle;
+
 constexpr int kChainLength = 100;
-
-WorldConfig benchConfig(const Integrator integrator) {
-  WorldConfig config;
-  config.dt = kDt;
-  config.integrator = integrator;
-  config.gravity = Vec3(0.0, -9.81, 0.0);
-  return config;
-}
-
-ParticleSpec unitParticle(const Vec3& position) {
-  ParticleSpec spec;
-  spec.position = position;
-  spec.inverse_mass = 1.0;
-  spec.damping = kDamping;
-  return spec;
-}
 
 // Particles on a square grid in the x-z plane, 2 m apart, all falling.
 World freeFallWorld(const std::int64_t n) {
-  World world(benchConfig(Integrator::kSemiImplicitEuler));
+  World world(bench::scenarioConfig(Integrator::kSemiImplicitEuler));
   const std::int64_t side = 1000;
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec3 p(2.0 * static_cast<Real>(i % side), 100.0, 2.0 * static_cast<Real>(i / side));
@@ -44,7 +29,7 @@ World freeFallWorld(const std::int64_t n) {
 // Chains of 100 particles along x, 1 m apart, neighbours joined by springs (k = 10, rest 1).
 // Every other particle starts 0.1 m up so the springs work from the first step.
 World springChainWorld(const std::int64_t n, const Integrator integrator) {
-  World world(benchConfig(integrator));
+  World world(bench::scenarioConfig(integrator));
   const std::int64_t chains = n / kChainLength;
   for (std::int64_t c = 0; c < chains; ++c) {
     ParticleId previous;
