@@ -412,6 +412,7 @@ void World::step() {
   }
   const Real h = config_.dt / static_cast<Real>(substeps);
   dropped_this_step_ = 0;
+  pass_energies_valid_ = false;
   for (int s = 0; s < substeps; ++s) substep(h);
   if (has_external_force_) {
     particles_.forces().setZero();
@@ -581,21 +582,11 @@ void World::checkEnergyGrowth(const Real dt) {
 }
 
 World::ParticleEnergies World::particleEnergies() const {
-  const Real* const x = particles_.positions().data();
-  const Real* const v = particles_.velocities().data();
-  const Real* const mass = mass_.data();
-  const Vec3& g = config_.gravity;
-  ParticleEnergies sums;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const Real* const p = x + 3 * i;
-    const Real* const u = v + 3 * i;
-    sums.kinetic_twice += mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    sums.gravitational -= mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
-    // 0 * value is 0 for every finite value and NaN for Inf or NaN.
-    sums.finite_probe +=
-        (p[0] * 0.0 + p[1] * 0.0 + p[2] * 0.0) + (u[0] * 0.0 + u[1] * 0.0 + u[2] * 0.0);
-  }
-  return sums;
+  const Real g[3] = {config_.gravity.x(), config_.gravity.y(), config_.gravity.z()};
+  EnergyAccumulator sums;
+  accumulateParticleEnergies(particles_.size(), mass_.data(), particles_.positions().data(),
+                             particles_.velocities().data(), sums);
+  return sums.sums(g);
 }
 
 std::pair<Real, Real> World::guardEnergies() const {
@@ -614,10 +605,10 @@ bool World::forcesAheadPossible() const {
 }
 
 World::StepEnergies World::guardEnergiesAfterStep() {
-  const ParticleEnergies sums = particleEnergies();
+  const ParticleEnergies sums = pass_energies_valid_ ? pass_energies_ : particleEnergies();
   StepEnergies energies;
   energies.gravitational = sums.gravitational;
-  energies.finite = sums.finite_probe == 0.0;
+  energies.finite = sums.finite();
   if (!energies.finite) return energies;
   if (!forcesAheadPossible()) {
     energies.free = 0.5 * sums.kinetic_twice +

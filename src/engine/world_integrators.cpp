@@ -4,6 +4,7 @@
 
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
+#include "mass_aggregate_sim/engine/semi_implicit_pass.h"
 #include "mass_aggregate_sim/engine/world.h"
 
 namespace mass_aggregate_sim {
@@ -19,56 +20,6 @@ void World::integrateExplicitEuler(const Real h) {
     v.col(i) = (v.col(i) + acceleration_.col(i) * h) * damping_factor_[i];
   }
 }
-
-namespace {
-
-// Semi-implicit Euler fused into one pass: a = F/m + g + a_own, computed per component with the
-// same operations in the same order as World::computeAccelerations (so the same bits), stored
-// for lastAccelerations() and used at once. Restrict pointers and no branch let it vectorise.
-template <bool kHasForces>
-inline void semiImplicitEulerComponent(const std::size_t i, const std::size_t k, const Real h,
-                                       const Real g, const Real* __restrict inverse_mass,
-                                       const Real* __restrict mobility,
-                                       const Real* __restrict own_acceleration,
-                                       const Real* __restrict damping, Real* __restrict a,
-                                       Real* __restrict x, Real* __restrict v) {
-  const Real uniform = mobility[i] * (g + own_acceleration[k]);
-  const Real acceleration = kHasForces ? a[k] * inverse_mass[i] + uniform : uniform;
-  a[k] = acceleration;
-  // v' = (v + a h) d^h,  x' = x + v' h
-  const Real velocity = (v[k] + acceleration * h) * damping[i];
-  v[k] = velocity;
-  x[k] += velocity * h;
-}
-
-// Two particles (six doubles) per iteration, written out so the compiler pairs the components
-// into vectors without shuffling gravity.
-template <bool kHasForces>
-void semiImplicitEulerPass(const std::size_t n, const Real h, const Real* __restrict g,
-                           const Real* __restrict inverse_mass, const Real* __restrict mobility,
-                           const Real* __restrict own_acceleration, const Real* __restrict damping,
-                           Real* __restrict a, Real* __restrict x, Real* __restrict v) {
-  const auto component = [&](const std::size_t i, const std::size_t c) {
-    semiImplicitEulerComponent<kHasForces>(i, 3 * i + c, h, g[c], inverse_mass, mobility,
-                                           own_acceleration, damping, a, x, v);
-  };
-  std::size_t i = 0;
-  for (; i + 1 < n; i += 2) {
-    component(i, 0);
-    component(i, 1);
-    component(i, 2);
-    component(i + 1, 0);
-    component(i + 1, 1);
-    component(i + 1, 2);
-  }
-  for (; i < n; ++i) {
-    component(i, 0);
-    component(i, 1);
-    component(i, 2);
-  }
-}
-
-}  // namespace
 
 void World::integrateSemiImplicitEuler(const Real h) {
   auto x = particles_.positions();
@@ -89,10 +40,24 @@ void World::integrateSemiImplicitEuler(const Real h) {
                               acceleration_, denseSprings());
   }
   const Real g[3] = {config_.gravity.x(), config_.gravity.y(), config_.gravity.z()};
-  const auto pass = has_forces ? semiImplicitEulerPass<true> : semiImplicitEulerPass<false>;
-  pass(particles_.size(), h, g, particles_.inverseMasses().data(), particles_.mobility().data(),
-       particles_.accelerations().data(), damping_factor_.data(), acceleration_.data(), x.data(),
-       v.data());
+  // The energy guard reads the state the step ends in: this pass sums it unless contacts move
+  // particles afterwards.
+  const bool energies = energyGuardApplies() && !contactsActive() &&
+                        mass_.size() == static_cast<Eigen::Index>(particles_.size());
+  SemiImplicitInputs in;
+  in.count = particles_.size();
+  in.h = h;
+  in.gravity = g;
+  in.inverse_mass = particles_.inverseMasses().data();
+  in.mobility = particles_.mobility().data();
+  in.own_acceleration = particles_.accelerations().data();
+  in.damping_factor = damping_factor_.data();
+  in.mass = mass_.data();
+  EnergyAccumulator sums;
+  semiImplicitEulerPass(in, has_forces, acceleration_.data(), x.data(), v.data(),
+                        energies ? &sums : nullptr);
+  pass_energies_valid_ = energies;
+  if (energies) pass_energies_ = sums.sums(g);
 }
 
 void World::integratePositionVerlet(const Real h) {

@@ -3,6 +3,8 @@
 // the next semi-implicit Euler step (dropped whenever the scene changes between steps).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/world.h"
 
@@ -122,6 +124,90 @@ TEST(StepCache, DenseSpringsMatchIdLookupsAfterARemoval) {
   const Real energy = generatorPotentialEnergy(generators, particles);
   EXPECT_GT(energy, 0.0);
   EXPECT_NEAR(generatorPotentialEnergy(generators, particles, &dense), energy, 1e-12 * energy);
+  EXPECT_NEAR(elastic, energy, 1e-12 * energy);
+}
+
+// A cloth whose rows and columns make runs (ends advancing together, some given b before a, some
+// damped), bungees slack and taut, and a removal that breaks one run: the run kernels give the
+// forces of the id look-ups bit for bit, and the elastic energy.
+TEST(StepCache, SpringRunsMatchIdLookups) {
+  constexpr int kWidth = 12;
+  constexpr int kHeight = 9;
+  ParticleStore particles;
+  ForceGenerators generators;
+  std::vector<ParticleId> ids;
+  for (int i = 0; i < kWidth * kHeight; ++i) {
+    ParticleSpec spec;
+    const int row = i / kWidth;
+    const int col = i % kWidth;
+    spec.position = Vec3(1.05 * col + 0.01 * row * row, 0.93 * row, 0.03 * ((i * 7) % 5));
+    spec.velocity = Vec3(0.1 * (i % 4), -0.2 * (i % 3), 0.05 * row);
+    ids.push_back(particles.add(spec));
+  }
+  const auto at = [&ids](const int row, const int col) { return ids[row * kWidth + col]; };
+  for (int row = 0; row < kHeight; ++row) {
+    for (int col = 0; col + 1 < kWidth; ++col) {
+      const Real damping = row % 2 == 0 ? 0.0 : 0.4;
+      if (row % 3 == 2) {
+        generators.springs.push_back(Spring{at(row, col + 1), at(row, col), 20.0, 1.0, damping});
+      } else {
+        generators.springs.push_back(Spring{at(row, col), at(row, col + 1), 20.0, 1.0, damping});
+      }
+    }
+  }
+  for (int row = 0; row + 1 < kHeight; ++row) {
+    for (int col = 0; col < kWidth; ++col) {
+      generators.springs.push_back(Spring{at(row, col), at(row + 1, col), 15.0, 0.9, 0.0});
+      // Rest length 0.93 or 0.95 against row spacings near 0.93: some slack, some taut.
+      generators.bungees.push_back(
+          Bungee{at(row, col), at(row + 1, col), 9.0, col % 2 == 0 ? 0.93 : 0.95, 0.1});
+    }
+  }
+  ParticleSpec extra;
+  extra.position = Vec3(3.0, 3.0, 3.0);
+  const ParticleId loose = particles.add(extra);
+  generators.springs.push_back(Spring{loose, ids[5], 4.0, 0.5, 0.2});
+  // Broken links aside, removing a particle moves the last one into its slot.
+  ASSERT_TRUE(particles.remove(ids.back()).isOk());
+  generators.springs.erase(
+      std::remove_if(generators.springs.begin(), generators.springs.end(),
+                     [&](const Spring& s) { return s.a == ids.back() || s.b == ids.back(); }),
+      generators.springs.end());
+  generators.bungees.erase(
+      std::remove_if(generators.bungees.begin(), generators.bungees.end(),
+                     [&](const Bungee& s) { return s.a == ids.back() || s.b == ids.back(); }),
+      generators.bungees.end());
+
+  const DenseSprings dense = resolveDenseSprings(generators, particles);
+  const auto runs = [](const std::vector<SpringSegment>& segments) {
+    return std::count_if(segments.begin(), segments.end(),
+                         [](const SpringSegment& s) { return s.run; });
+  };
+  EXPECT_GE(runs(dense.spring_segments), kHeight + 1);
+  EXPECT_GE(runs(dense.bungee_segments), 1);
+  std::size_t covered = 0;
+  for (const SpringSegment& s : dense.spring_segments) {
+    EXPECT_EQ(s.first, covered);
+    covered += s.count;
+  }
+  EXPECT_EQ(covered, dense.springs.size());
+
+  const Eigen::Index n = static_cast<Eigen::Index>(particles.size());
+  Vec3Array by_id = Vec3Array::Zero(3, n);
+  Vec3Array by_dense = Vec3Array::Zero(3, n);
+  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
+                            9.81, 0.01, by_id);
+  Real elastic = -1.0;
+  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
+                            9.81, 0.01, by_dense, &dense, &elastic);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(by_id(c, i), by_dense(c, i)) << "particle " << i << " component " << c;
+    }
+  }
+  EXPECT_GT(by_id.cwiseAbs().maxCoeff(), 0.0);
+  const Real energy = generatorPotentialEnergy(generators, particles);
+  EXPECT_GT(energy, 0.0);
   EXPECT_NEAR(elastic, energy, 1e-12 * energy);
 }
 

@@ -11,7 +11,8 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
-// A spring or bungee between two particles with both ends resolved to dense indices.
+// A spring or bungee between two particles with both ends resolved to dense indices, a < b (the
+// ends swapped when needed: the force on each end is then the same to the bit).
 struct DenseSpring {
   std::uint32_t a = 0;
   std::uint32_t b = 0;
@@ -23,9 +24,21 @@ struct DenseSpring {
 // The springs and bungees of a ForceGenerators in the same order, ends as dense indices: the hot
 // loops then read one packed array instead of looking every id up. Valid while neither the
 // generators nor the store's layout (ParticleStore::layoutVersion) change.
+//
+// The lists are cut, in order, into segments. A run is a segment whose ends advance together
+// (spring first + j joins a + j and b + j): chains, ropes and the rows and columns of a cloth
+// come out that way, and a run reads its positions and adds its forces as contiguous blocks.
+struct SpringSegment {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+  bool run = false;
+  bool damped = false;  // a spring of the segment has damping != 0
+};
 struct DenseSprings {
   std::vector<DenseSpring> springs;
   std::vector<DenseSpring> bungees;
+  std::vector<SpringSegment> spring_segments;
+  std::vector<SpringSegment> bungee_segments;
 };
 DenseSprings resolveDenseSprings(const ForceGenerators& generators, const ParticleStore& particles);
 

@@ -12,6 +12,7 @@
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/force_generators.h"
 #include "mass_aggregate_sim/engine/links.h"
+#include "mass_aggregate_sim/engine/particle_energies.h"
 #include "mass_aggregate_sim/engine/particle_store.h"
 #include "mass_aggregate_sim/engine/queries.h"
 #include "mass_aggregate_sim/engine/stability.h"
@@ -199,12 +200,11 @@ class World {
   void checkEnergyGrowth(Real dt);
   // One pass over the particles: twice the kinetic energy and the gravitational energy (cached
   // masses, no division), and sum(0 * x) + sum(0 * v), which is 0 unless a value is not finite.
-  struct ParticleEnergies {
-    Real kinetic_twice = 0.0;
-    Real gravitational = 0.0;
-    Real finite_probe = 0.0;
-  };
+  using ParticleEnergies = engine::ParticleEnergies;
   ParticleEnergies particleEnergies() const;
+  // The sums of the last semi-implicit Euler pass, when it made them (see substep()).
+  ParticleEnergies pass_energies_;
+  bool pass_energies_valid_ = false;
   // Kinetic + elastic and gravitational energy.
   std::pair<Real, Real> guardEnergies() const;
   // The same after a step, with the finite probe; where it can, it evaluates the next step's forces
