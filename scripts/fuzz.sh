@@ -27,7 +27,9 @@ for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
   while read -r flag; do
     [ -n "${flag}" ] && extra_flags+=("${flag}")
   done < <(sed -n 's#^// fuzz-flags: ##p' "${target_src}" | tr ' ' '\n')
-  clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+  # The engine's own compile options (CMakeLists.txt) come first.
+  clang++ -std=c++17 -O1 -g -ffp-contract=off -fno-math-errno -Wno-psabi \
+    -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -I"${REPO_DIR}/include" -I"${msg_include}" ${eigen_include} "${target_src}" "${REPO_DIR}"/src/engine/*.cpp \
     "${extra_sources[@]}" "${extra_flags[@]}" -o "${binary}" >"${fuzz_dir}/${target}.build.log" 2>&1 || {
     tail -n 30 "${fuzz_dir}/${target}.build.log"

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "mass_aggregate_sim/engine/contact_workspace.h"
+#include "mass_aggregate_sim/engine/energy_accumulator.h"
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
 #include "mass_aggregate_sim/engine/state_hash.h"

@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "mass_aggregate_sim/engine/particle_energies.h"
+#include "mass_aggregate_sim/engine/energy_accumulator.h"
 #include "mass_aggregate_sim/engine/types.h"
 
 namespace mass_aggregate_sim {

@@ -1,4 +1,4 @@
-#include "mass_aggregate_sim/engine/particle_energies.h"
+#include "mass_aggregate_sim/engine/energy_accumulator.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
