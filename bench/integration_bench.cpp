@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "mass_aggregate_sim/engine/world.h"
 #include "scenario_common.h"
@@ -121,7 +122,35 @@ void integratorArguments(benchmark::internal::Benchmark* bench) {
   }
 }
 
+// The floor under scenario A: a loop that streams the bytes A's integration pass moves per
+// particle (reads own acceleration, mobility, damping, velocity and position: 11 doubles; writes
+// acceleration, velocity and position: 9) with one addition per value, so the ratio of A to it
+// says how close A is to what the memory system delivers at that size.
+void BM_ScenarioA_BandwidthFloor(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<Real> own(3 * n, 0.0), v(3 * n, 1.0), x(3 * n, 2.0), a(3 * n, 0.0);
+  std::vector<Real> mobility(n, 1.0), damping(n, 0.99);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Real scale = mobility[i] + damping[i];
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::size_t k = 3 * i + c;
+        a[k] = own[k] + scale;
+        v[k] = v[k] + scale;
+        x[k] = x[k] + scale;
+      }
+    }
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["particle_step_time"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+  state.counters["particles"] = static_cast<double>(n);
+}
+
 BENCHMARK(BM_ScenarioA_FreeFall)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
+BENCHMARK(BM_ScenarioA_BandwidthFloor)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
 BENCHMARK(BM_ScenarioB_SpringChains)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
 BENCHMARK(BM_ScenarioB_SpringChainsNoEnergyGuard)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_ScenarioB_Integrator)->Apply(integratorArguments);
