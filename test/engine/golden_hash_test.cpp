@@ -8,7 +8,8 @@
 // intended, run
 //   devel/lib/mass_aggregate_sim/engine_tests --gtest_filter='GoldenHash.*'
 // read the "[ golden ] hash" line it prints, and replace kGoldenHash with it, saying why in the
-// commit message.
+// commit message. On x86-64 the normal build runs the AVX2 versions of the SIMD loops (simd.h) and
+// the sanitizer build (scripts/sanitizer_tests.sh) the baseline ones; both must give this hash.
 #include <gtest/gtest.h>
 
 #include <cstdio>
