@@ -31,22 +31,24 @@ bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal
 }
 
 Real ContactResolver::lastImpulse(const std::uint64_t key) const {
-  const auto it = std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), key,
-                                   [](const std::pair<std::uint64_t, Real>& entry,
-                                      const std::uint64_t k) { return entry.first < k; });
-  return it != warm_impulses_.end() && it->first == key ? it->second : 0.0;
+  const auto it =
+      std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), key,
+                       [](const WarmStart& entry, const std::uint64_t k) { return entry.key < k; });
+  return it != warm_impulses_.end() && it->key == key ? it->normal : 0.0;
 }
 
 void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
-                              const CollisionSettings& settings, ContactStats& stats) {
+                              const CollisionSettings& settings, const Real position_weight,
+                              ContactStats& stats) {
   for (const std::uint32_t i : touched_) {
     touched_flag_[i] = 0;
     displacement_.col(i).setZero();
   }
   touched_.clear();
   last_substep_ = h;
+  follow_scale_ = h * position_weight;
   const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
     displacement_.setZero(3, n);
@@ -100,6 +102,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
   }
 
   stats.velocity_iterations = resolveVelocities(contacts, v, inverse_mass, h, settings);
+  if (follow_scale_ > 0.0) followRestingImpulses(contacts, x, inverse_mass, follow_scale_);
   stats.position_iterations = resolvePositions(contacts, x, inverse_mass, settings);
   stats.iterations = stats.velocity_iterations + stats.position_iterations;
 
@@ -142,9 +145,10 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
   };
   // Contacts mostly come in the order of their keys, so each lookup starts where the last one
   // ended: everything before `hint` is below the last key, hence below any key not smaller.
-  const auto key_below = [](const std::pair<std::uint64_t, Real>& entry, const std::uint64_t key) {
-    return entry.first < key;
+  const auto key_below = [](const WarmStart& entry, const std::uint64_t key) {
+    return entry.key < key;
   };
+  friction_total_.assign(count, Vec3::Zero());
   auto hint = warm_impulses_.begin();
   std::uint64_t hint_key = 0;
   for (std::size_t k = 0; k < count; ++k) {
@@ -152,39 +156,53 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
     if (!velocity_active_[k]) continue;
     if (c.key < hint_key) hint = warm_impulses_.begin();
     auto it = hint;
-    for (int probe = 0; probe < 4 && it != warm_impulses_.end() && it->first < c.key; ++probe) {
+    for (int probe = 0; probe < 4 && it != warm_impulses_.end() && it->key < c.key; ++probe) {
       ++it;
     }
-    if (it != warm_impulses_.end() && it->first < c.key) {
+    if (it != warm_impulses_.end() && it->key < c.key) {
       it = std::lower_bound(it, warm_impulses_.end(), c.key, key_below);
     }
     hint = it;
     hint_key = c.key;
-    const Real previous = (it != warm_impulses_.end() && it->first == c.key) ? it->second : 0.0;
+    const bool found = it != warm_impulses_.end() && it->key == c.key;
+    const Real previous = found ? it->normal : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
     // passes converge, so a bounce must not be re-evaluated from a half-solved state). A contact
     // or cable that already pushed or pulled in the last substep is holding, not hitting.
-    if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
+    if (c.kind == ContactKind::kContact && resting_[k] && follow_scale_ > 0.0) {
+      // A resting contact moves by beta h (v''_sep - v'_sep) after this phase, which leaves the
+      // overlap p - beta h (v''_sep - v'_sep): aim at touching when that is within reach, never
+      // at pushing apart (overlap beyond the slop is the position passes' work).
+      target_[k] = std::min(Real{0.0}, separating(c) + c.penetration / follow_scale_);
+    } else if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
       // A gap g may close at up to g / h within the substep, no faster.
       target_[k] = c.penetration / h;
     } else if (c.kind != ContactKind::kRod && !resting_[k] && previous <= 0.0) {
       target_[k] = -c.restitution * std::min(Real{0.0}, separating(c) - built_velocity_[k]);
     }
     total_[k] = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
+    if (found && c.kind == ContactKind::kContact && c.friction > 0.0) {
+      // The last friction impulse, in the current tangent plane and within mu j_n.
+      Vec3 friction = it->friction - it->friction.dot(c.normal) * c.normal;
+      const Real limit = c.friction * total_[k];
+      const Real magnitude = friction.norm();
+      if (magnitude > limit) friction *= limit / magnitude;
+      friction_total_[k] = friction;
+    }
   }
   // Warm start: each constraint begins with the impulse it ended the last substep with.
   for (std::size_t k = 0; k < count; ++k) {
     const Real j = total_[k];
     if (j == 0.0) continue;
     const Contact& c = contacts[k];
-    v.col(c.a) += (j * inverse_mass[c.a]) * c.normal;
+    const Vec3 impulse = j * c.normal + friction_total_[k];
+    v.col(c.a) += inverse_mass[c.a] * impulse;
     touch(c.a);
     if (hasB(c)) {
-      v.col(c.b) -= (j * inverse_mass[c.b]) * c.normal;
+      v.col(c.b) -= inverse_mass[c.b] * impulse;
       touch(c.b);
     }
   }
-  friction_total_.assign(count, Vec3::Zero());
 
   int passes = 0;
   while (passes < settings.max_iterations) {
@@ -233,14 +251,43 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
   next_warm_impulses_.clear();
   for (std::size_t k = 0; k < count; ++k) {
     if (velocity_active_[k] && total_[k] != 0.0) {
-      next_warm_impulses_.emplace_back(contacts[k].key, total_[k]);
+      next_warm_impulses_.push_back({contacts[k].key, total_[k], friction_total_[k]});
     }
   }
-  if (!std::is_sorted(next_warm_impulses_.begin(), next_warm_impulses_.end())) {
-    std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end());
+  const auto by_key = [](const WarmStart& x, const WarmStart& y) { return x.key < y.key; };
+  if (!std::is_sorted(next_warm_impulses_.begin(), next_warm_impulses_.end(), by_key)) {
+    std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end(), by_key);
   }
   warm_impulses_.swap(next_warm_impulses_);
   return passes;
+}
+
+void ContactResolver::followRestingImpulses(const std::vector<Contact>& contacts, Vec3Map& x,
+                                            const ConstScalarMap& inverse_mass, const Real scale) {
+  const std::size_t count = contacts.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Contact& c = contacts[k];
+    if (c.kind != ContactKind::kContact || !resting_[k] || !velocity_active_[k]) continue;
+    const Vec3 impulse = total_[k] * c.normal + friction_total_[k];
+    if (impulse.isZero(0.0)) continue;
+    // dx = beta h w J: the move the integrator would have made had the impulse been in the step.
+    const Real wa = inverse_mass[c.a];
+    if (wa > 0.0) {
+      const Vec3 move_a = (scale * wa) * impulse;
+      x.col(c.a) += move_a;
+      displacement_.col(c.a) += move_a;
+      touch(c.a);
+    }
+    if (hasB(c)) {
+      const Real wb = inverse_mass[c.b];
+      if (wb > 0.0) {
+        const Vec3 move_b = (-scale * wb) * impulse;
+        x.col(c.b) += move_b;
+        displacement_.col(c.b) += move_b;
+        touch(c.b);
+      }
+    }
+  }
 }
 
 int ContactResolver::resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,

@@ -74,6 +74,23 @@ Contact colliderContact(const std::uint32_t i, const std::uint32_t slot, const C
 // does not fall freely for a substep and land with a jolt.
 Real contactMargin(const CollisionSettings& settings) { return 2.0 * settings.penetration_slop; }
 
+// beta of x' = x + v h + beta a h^2 for a constant acceleration a: how much of this substep's
+// velocity change the integrator's position update already followed.
+Real positionWeight(const Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kExplicitEuler:
+      return 0.0;
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kImplicitEuler:
+      return 1.0;
+    case Integrator::kPositionVerlet:
+    case Integrator::kVelocityVerlet:
+    case Integrator::kRk4:
+      return 0.5;
+  }
+  return 0.0;
+}
+
 }  // namespace
 
 // --- colliders ---
@@ -549,7 +566,8 @@ void World::resolveContacts(const Real h) {
   }
 
   ws.resolver.resolve(ws.contacts, particles_.positions(), particles_.velocities(),
-                      particles_.inverseMasses(), acceleration_, h, settings, last_contact_stats_);
+                      particles_.inverseMasses(), acceleration_, h, settings,
+                      positionWeight(config_.integrator), last_contact_stats_);
   last_contact_stats_.contacts = ws.contacts.size();
   last_contact_stats_.dropped = dropped_this_step_;
 

@@ -33,9 +33,15 @@ namespace engine {
 class ContactResolver {
  public:
   // acceleration: each particle's acceleration over the last substep of length h.
+  // position_weight: beta of the integrator's position update x' = x + v h + beta a h^2 (1 for
+  // semi-implicit and implicit Euler, 1/2 for the Verlets and RK4, 0 for explicit Euler). After the
+  // velocity phase each particle moves by beta h w J for the impulses J of its resting contacts, as
+  // if those impulses had been forces inside the step: a resting particle then ends where it
+  // started instead of sinking by beta g h^2 for the position passes to push back up.
   void resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h, const CollisionSettings& settings, ContactStats& stats);
+               Real h, const CollisionSettings& settings, Real position_weight,
+               ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
@@ -46,9 +52,10 @@ class ContactResolver {
   Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
-    for (const auto& [key, impulse] : warm_impulses_) {
-      hasher.add(key);
-      hasher.add(impulse);
+    for (const WarmStart& entry : warm_impulses_) {
+      hasher.add(entry.key);
+      hasher.add(entry.normal);
+      if (!entry.friction.isZero(0.0)) hasher.add(entry.friction);
     }
   }
 
@@ -57,6 +64,8 @@ class ContactResolver {
   int resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
                         const ConstScalarMap& inverse_mass, Real h,
                         const CollisionSettings& settings);
+  void followRestingImpulses(const std::vector<Contact>& contacts, Vec3Map& x,
+                             const ConstScalarMap& inverse_mass, Real scale);
   int resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
                        const ConstScalarMap& inverse_mass, const CollisionSettings& settings);
   // For a link: current normal (from a towards b) and length error; false when degenerate.
@@ -71,10 +80,17 @@ class ContactResolver {
   std::vector<Real> total_;           // per contact: accumulated normal impulse this substep
   std::vector<Real> target_;          // per contact: target separating velocity
   std::vector<Vec3> friction_total_;  // per contact: accumulated friction impulse
-  // (contact key, normal impulse) of the last substep, sorted by key: the warm start.
-  std::vector<std::pair<std::uint64_t, Real>> warm_impulses_;
-  std::vector<std::pair<std::uint64_t, Real>> next_warm_impulses_;
+  // What a contact ended the last substep with: the warm start of the next one.
+  struct WarmStart {
+    std::uint64_t key;
+    Real normal;    // normal impulse
+    Vec3 friction;  // friction impulse (world frame)
+  };
+  // Sorted by key.
+  std::vector<WarmStart> warm_impulses_;
+  std::vector<WarmStart> next_warm_impulses_;
   Real last_substep_ = 0.0;
+  Real follow_scale_ = 0.0;  // beta h of the last resolve()
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
   std::vector<std::uint32_t> touched_;
