@@ -1,7 +1,9 @@
 #include "mass_aggregate_sim/engine/broadphase.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -9,6 +11,11 @@ namespace {
 
 // A box covering more cells than this is tested against every other box instead of being hashed.
 constexpr std::int64_t kMaxCellsPerBox = 64;
+// Boxes at most this many times the median size use the dense grid of cells one widest box across,
+// when its table has at most kDenseCellsPerBox cells per box.
+constexpr Real kMaxDenseSizeRatio = 2.0;
+constexpr Real kDenseCellsPerBox = 4.0;
+constexpr std::uint32_t kNoCell = 0xFFFFFFFFu;
 
 bool finiteBox(const Vec3Array& lo, const Vec3Array& hi, const Eigen::Index i) {
   return lo.col(i).allFinite() && hi.col(i).allFinite();
@@ -92,8 +99,10 @@ void BroadphaseFinder::uniformGrid(const Vec3Array& lo, const Vec3Array& hi,
     if (finiteBox(lo, hi, i)) extents_.push_back((hi.col(i) - lo.col(i)).maxCoeff());
   }
   if (extents_.size() < 2) return;
+  const Real largest = *std::max_element(extents_.begin(), extents_.end());
   const auto middle = extents_.begin() + static_cast<std::ptrdiff_t>(extents_.size() / 2);
   std::nth_element(extents_.begin(), middle, extents_.end());
+  if (largest <= kMaxDenseSizeRatio * *middle && denseGrid(lo, hi, largest, pairs)) return;
   Real cell = *middle;
   if (!(cell > 0.0)) cell = *std::max_element(extents_.begin(), extents_.end());
   if (!(cell > 0.0)) cell = 1.0;
@@ -181,6 +190,101 @@ void BroadphaseFinder::uniformGrid(const Vec3Array& lo, const Vec3Array& hi,
       if (boxesOverlap(lo, hi, big, other)) pairs.push_back(ordered(big, other));
     }
   }
+}
+
+bool BroadphaseFinder::denseGrid(const Vec3Array& lo, const Vec3Array& hi, const Real largest,
+                                 std::vector<IndexPair>& pairs) {
+  if (!(largest > 0.0)) return false;
+  const Eigen::Index n = lo.cols();
+  // Cells a little wider than the widest box: two boxes that overlap have low corners less than
+  // one cell apart on every axis, so their cells are neighbours (the margin absorbs rounding).
+  const Real cell = largest * (1.0 + 1e-9);
+  const Real inverse_cell = 1.0 / cell;
+  Vec3 origin = Vec3::Constant(std::numeric_limits<Real>::infinity());
+  Vec3 far_corner = -origin;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!finiteBox(lo, hi, i)) continue;
+    origin = origin.cwiseMin(lo.col(i));
+    far_corner = far_corner.cwiseMax(lo.col(i));
+  }
+  // A table of at most kDenseCellsPerBox cells per box, else the hashed grid.
+  Real cells = 1.0;
+  std::array<std::int64_t, 3> dims{};
+  for (int k = 0; k < 3; ++k) {
+    const Real span = std::floor((far_corner[k] - origin[k]) * inverse_cell) + 1.0;
+    cells *= span;
+    if (!(cells <= kDenseCellsPerBox * static_cast<Real>(n) + 64.0)) return false;
+    dims[k] = static_cast<std::int64_t>(span);
+  }
+  const auto cell_count = static_cast<std::size_t>(cells);
+  const auto cellOf = [&](const Eigen::Index i, const int k) {
+    const auto c = static_cast<std::int64_t>(std::floor((lo(k, i) - origin[k]) * inverse_cell));
+    return std::min(c, dims[k] - 1);
+  };
+
+  // Counting sort of the boxes by cell (stable: index order within a cell).
+  cell_start_.assign(cell_count + 1, 0);
+  box_cell_.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!finiteBox(lo, hi, i)) {
+      box_cell_[i] = kNoCell;
+      continue;
+    }
+    const std::int64_t c = cellOf(i, 0) + dims[0] * (cellOf(i, 1) + dims[1] * cellOf(i, 2));
+    box_cell_[i] = static_cast<std::uint32_t>(c);
+    ++cell_start_[c + 1];
+  }
+  for (std::size_t c = 0; c < cell_count; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_boxes_.resize(cell_start_[cell_count]);
+  bucket_cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (box_cell_[i] != kNoCell) cell_boxes_[bucket_cursor_[box_cell_[i]]++] = i;
+  }
+
+  // Each cell against itself and the 13 neighbours that come after it in (z, y, x) order, so a
+  // pair of neighbouring cells is visited once.
+  std::int64_t offsets[13];
+  int offset_count = 0;
+  std::array<std::int64_t, 3> cell_index{};
+  for (std::int64_t z = 0; z < dims[2]; ++z) {
+    for (std::int64_t y = 0; y < dims[1]; ++y) {
+      for (std::int64_t x = 0; x < dims[0]; ++x) {
+        const std::int64_t c = x + dims[0] * (y + dims[1] * z);
+        const std::uint32_t begin = cell_start_[c];
+        const std::uint32_t end = cell_start_[c + 1];
+        if (begin == end) continue;
+        cell_index = {x, y, z};
+        offset_count = 0;
+        for (int dz = 0; dz <= 1; ++dz) {
+          for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+              if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0))) continue;
+              const std::int64_t nx = cell_index[0] + dx;
+              const std::int64_t ny = cell_index[1] + dy;
+              const std::int64_t nz = cell_index[2] + dz;
+              if (nx < 0 || ny < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
+              offsets[offset_count++] = nx + dims[0] * (ny + dims[1] * nz);
+            }
+          }
+        }
+        for (std::uint32_t s = begin; s < end; ++s) {
+          const std::uint32_t p = cell_boxes_[s];
+          for (std::uint32_t t = s + 1; t < end; ++t) {
+            const std::uint32_t q = cell_boxes_[t];
+            if (boxesOverlap(lo, hi, p, q)) pairs.push_back(ordered(p, q));
+          }
+          for (int o = 0; o < offset_count; ++o) {
+            const std::int64_t other = offsets[o];
+            for (std::uint32_t t = cell_start_[other]; t < cell_start_[other + 1]; ++t) {
+              const std::uint32_t q = cell_boxes_[t];
+              if (boxesOverlap(lo, hi, p, q)) pairs.push_back(ordered(p, q));
+            }
+          }
+        }
+      }
+    }
+  }
+  return true;
 }
 
 void bruteForcePairs(const Vec3Array& lo, const Vec3Array& hi, std::vector<IndexPair>& pairs) {

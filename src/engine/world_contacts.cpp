@@ -91,6 +91,53 @@ Real positionWeight(const Integrator integrator) {
   return 0.0;
 }
 
+// Bottom-up order: heights along `up` quantised into buckets of half the smallest radius (at
+// least (highest - lowest) / n), so one counting sort orders the contacts in O(contacts + n);
+// contacts closer in height than that keep the broadphase's order. Bucket 0 holds the contacts
+// without a second particle (colliders, anchored links), which carry a pile from below.
+void heightBuckets(const ConstVec3Map& x, const ConstScalarMap& radius, const Vec3& up,
+                   std::vector<std::uint32_t>& bucket, std::uint32_t& buckets) {
+  const Eigen::Index n = x.cols();
+  Real lowest = std::numeric_limits<Real>::infinity();
+  Real highest = -lowest;
+  Real smallest_radius = lowest;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Real height = up.dot(x.col(i));
+    lowest = std::min(lowest, height);
+    highest = std::max(highest, height);
+    smallest_radius = std::min(smallest_radius, radius[i]);
+  }
+  const Real range = highest - lowest;
+  Real width =
+      std::max(range / static_cast<Real>(std::max<Eigen::Index>(n, 1)), 0.5 * smallest_radius);
+  if (!(std::isfinite(width) && width > 0.0)) width = 0.0;
+  const Real inverse_width = width > 0.0 ? 1.0 / width : 0.0;
+  const Real top = std::isfinite(range) ? range * inverse_width : 0.0;
+  buckets = static_cast<std::uint32_t>(std::min<Real>(top, static_cast<Real>(n))) + 2;
+  bucket.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Real t = (up.dot(x.col(i)) - lowest) * inverse_width;
+    // Not finite or beyond the range: clamped (t >= 0 is false for NaN).
+    const Real clamped = t >= 0.0 ? std::min(t, static_cast<Real>(buckets - 2)) : 0.0;
+    bucket[i] = 1 + static_cast<std::uint32_t>(clamped);
+  }
+}
+
+// Stable counting sort of `items` by `bucket` (one per item, below `buckets`) through `scratch`;
+// nothing moves when they are already in order.
+template <typename Item>
+void sortByBucket(std::vector<Item>& items, const std::vector<std::uint32_t>& bucket,
+                  const std::uint32_t buckets, std::vector<std::uint32_t>& start,
+                  std::vector<Item>& scratch) {
+  if (std::is_sorted(bucket.begin(), bucket.end())) return;
+  start.assign(static_cast<std::size_t>(buckets) + 1, 0);
+  for (const std::uint32_t b : bucket) ++start[b + 1];
+  for (std::uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+  scratch.resize(items.size());
+  for (std::size_t k = 0; k < items.size(); ++k) scratch[start[bucket[k]]++] = items[k];
+  items.swap(scratch);
+}
+
 }  // namespace
 
 // --- colliders ---
@@ -534,6 +581,21 @@ void World::resolveContacts(const Real h) {
     ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
     if (!settings.collide_linked) buildLinkedPairs(ws);
   }
+  const bool bottom_up = config_.gravity.squaredNorm() > 0.0;
+  std::uint32_t buckets = 0;
+  if (bottom_up) {
+    heightBuckets(ConstVec3Map(x.data(), 3, x.cols()), ConstScalarMap(radius.data(), radius.size()),
+                  -config_.gravity.normalized(), ws.particle_bucket, buckets);
+  }
+  if (bottom_up && ws.pairs.size() > 1) {
+    // Pairs bottom up, so their contacts come out in the order the resolver wants.
+    ws.item_bucket.resize(ws.pairs.size());
+    for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
+      ws.item_bucket[k] =
+          std::min(ws.particle_bucket[ws.pairs[k].a], ws.particle_bucket[ws.pairs[k].b]);
+    }
+    sortByBucket(ws.pairs, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_pairs);
+  }
   if (swept) {
     sweepParticles(ws);
   } else {
@@ -544,24 +606,19 @@ void World::resolveContacts(const Real h) {
 
   ws.contacts.clear();
   generateContacts(ws, dropped_this_step_);
-  if (config_.gravity.squaredNorm() > 0.0 && ws.contacts.size() > 1) {
+  if (bottom_up && ws.contacts.size() > 1) {
     // Bottom up along gravity (colliders first): a forward pass carries the support from the
-    // ground to the top of a pile.
-    const Vec3 up = -config_.gravity.normalized();
-    ws.order.clear();
-    for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
-      const Contact& c = ws.contacts[k];
-      const Real height = c.b == kNoParticle ? -std::numeric_limits<Real>::infinity()
-                                             : std::min(up.dot(x.col(c.a)), up.dot(x.col(c.b)));
-      ws.order.emplace_back(height, static_cast<std::uint32_t>(k));
-    }
-    // Often already in order (every collider contact ranks first, in generation order): then
-    // the permutation is the identity and the copy is skipped.
-    if (!std::is_sorted(ws.order.begin(), ws.order.end())) {
-      std::sort(ws.order.begin(), ws.order.end());
-      ws.sorted_contacts.clear();
-      for (const auto& entry : ws.order) ws.sorted_contacts.push_back(ws.contacts[entry.second]);
-      ws.contacts.swap(ws.sorted_contacts);
+    // ground to the top of a pile. Collider contacts come first and the pairs were sorted, so
+    // only links (listed last) usually need moving.
+    // Without links the contacts are the collider ones (bucket 0), then the sorted pairs' ones.
+    if (!links_.empty()) {
+      ws.item_bucket.resize(ws.contacts.size());
+      for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
+        const Contact& c = ws.contacts[k];
+        ws.item_bucket[k] =
+            c.b == kNoParticle ? 0 : std::min(ws.particle_bucket[c.a], ws.particle_bucket[c.b]);
+      }
+      sortByBucket(ws.contacts, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_contacts);
     }
   }
 

@@ -17,8 +17,12 @@ namespace engine {
 struct ContactWorkspace {
   std::vector<Contact> contacts;
   std::vector<Contact> sorted_contacts;
-  std::vector<std::pair<Real, std::uint32_t>> order;  // (height, contact) for bottom-up order
+  // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.
+  std::vector<std::uint32_t> particle_bucket;
+  std::vector<std::uint32_t> item_bucket;
+  std::vector<std::uint32_t> bucket_start;
   std::vector<IndexPair> pairs;
+  std::vector<IndexPair> sorted_pairs;
   std::vector<std::uint8_t> pair_is_swept;  // per pair: caught by the swept test this substep
   std::vector<std::uint64_t> linked_pairs;  // sorted (min dense << 32 | max dense) of linked pairs
   Vec3Array box_lo;
