@@ -30,11 +30,33 @@ bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal
   return true;
 }
 
+void ContactResolver::indexWarmByKey() const {
+  if (warm_by_key_.size() == warm_.size()) return;
+  warm_by_key_.clear();
+  for (std::size_t k = 0; k < warm_.size(); ++k) {
+    warm_by_key_.emplace_back(warm_[k].key, static_cast<std::uint32_t>(k));
+  }
+  std::sort(warm_by_key_.begin(), warm_by_key_.end());
+}
+
 Real ContactResolver::lastImpulse(const std::uint64_t key) const {
-  const auto it =
-      std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), key,
-                       [](const WarmStart& entry, const std::uint64_t k) { return entry.key < k; });
-  return it != warm_impulses_.end() && it->key == key ? it->normal : 0.0;
+  indexWarmByKey();
+  const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
+                                   std::pair<std::uint64_t, std::uint32_t>{key, 0});
+  return it != warm_by_key_.end() && it->first == key ? warm_[it->second].normal : 0.0;
+}
+
+std::ptrdiff_t ContactResolver::findWarm(const std::uint64_t key, std::size_t& cursor) {
+  // A settled scene lists its contacts in the same order every substep: the entry is at the
+  // cursor. Else a binary search by key, after which the cursor follows from there.
+  if (cursor < warm_.size() && warm_[cursor].key == key)
+    return static_cast<std::ptrdiff_t>(cursor++);
+  indexWarmByKey();
+  const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
+                                   std::pair<std::uint64_t, std::uint32_t>{key, 0});
+  if (it == warm_by_key_.end() || it->first != key) return -1;
+  cursor = it->second + std::size_t{1};
+  return it->second;
 }
 
 void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
@@ -55,19 +77,38 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
 
+  prepare(contacts, x, v, inverse_mass, acceleration, h);
+  stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
+  // Velocities are final from here on: the closing speed left is measured while following.
+  stats.max_closing_velocity = followRestingImpulses(x, v, inverse_mass, h);
+  stats.position_iterations =
+      resolvePositions(contacts, x, inverse_mass, settings, stats.max_penetration);
+  stats.iterations = stats.velocity_iterations + stats.position_iterations;
+}
+
+void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+                              const ConstScalarMap& inverse_mass,
+                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
   const std::size_t count = contacts.size();
-  inverse_mass_sum_.resize(count);
-  built_velocity_.resize(count);
-  resting_.resize(count);
-  velocity_active_.resize(count);
+  rows_.resize(count);
+  penetration_.resize(count);
+  friction_coefficient_.resize(count);
+  friction_total_.resize(count);
+  next_warm_.resize(count);
+  std::size_t cursor = 0;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];
+    Row& row = rows_[k];
+    const bool b = hasB(c);
+    row.a = c.a;
+    row.b = b ? c.b : c.a;
+    row.kind = c.kind;
     const Real wa = inverse_mass[c.a];
-    const Real wb = hasB(c) ? inverse_mass[c.b] : 0.0;
-    inverse_mass_sum_[k] = wa + wb;
+    const Real wb = b ? inverse_mass[c.b] : 0.0;
+    Real w_sum = wa + wb;
     Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
     Real acceleration_bound = wa > 0.0 ? relative_acceleration.norm() : 0.0;
-    if (hasB(c) && wb > 0.0) {
+    if (b && wb > 0.0) {
       relative_acceleration -= acceleration.col(c.b);
       acceleration_bound += acceleration.col(c.b).norm();
     }
@@ -78,132 +119,88 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
         c.normal = normal;
         c.penetration = error;
       } else {
-        inverse_mass_sum_[k] = 0.0;  // coincident ends: no direction to act along
+        w_sum = 0.0;  // coincident ends: no direction to act along
       }
     }
+    row.normal = c.normal;
+    row.inverse_mass_sum = w_sum;
+    penetration_[k] = c.penetration;
     // Closing velocity the forces built over the substep, counted only for the fraction of it the
     // contact already existed: the overlap d, reached at closing speed |v_sep|, took d / |v_sep|.
-    const Real v_sep =
-        (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
+    const Real v_sep = (Vec3(v.col(c.a)) - (b ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
     const Real built = std::min(Real{0.0}, relative_acceleration.dot(c.normal) * h);
     Real in_contact = 1.0;
     if (v_sep < 0.0) in_contact = std::clamp(c.penetration / (-v_sep * h), Real{0.0}, Real{1.0});
-    built_velocity_[k] = built * in_contact;
+    const Real built_velocity = built * in_contact;
     // Resting: what is left of the closing speed after removing all the forces built over the
     // substep is below what they can build in two more (explicit Euler moves with the velocity of
     // the step before, so one substep of slack is not enough). Then the target is 0, no bounce.
-    resting_[k] = v_sep - built > -2.0 * acceleration_bound * h;
+    const bool resting = v_sep - built > -2.0 * acceleration_bound * h;
     // A gap (a contact not yet touching, a cable not yet taut) matters only for slow approaches:
     // it then keeps them from closing faster than the gap allows, so a resting contact or a loaded
     // cable that flickers open does not fall free for a substep and come back with a jolt. A fast
     // approach is let through, to bounce properly in the next substep.
-    velocity_active_[k] = inverse_mass_sum_[k] > 0.0 &&
-                          !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting_[k]);
-  }
+    const bool active =
+        w_sum > 0.0 && !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting);
+    const bool friction = c.kind == ContactKind::kContact && c.friction > 0.0;
+    row.flags = static_cast<std::uint8_t>((b ? kHasB : 0) | (active ? kActive : 0) |
+                                          (resting ? kResting : 0) | (friction ? kFriction : 0) |
+                                          (c.kind != ContactKind::kRod ? kUnilateral : 0));
+    next_warm_[k].key = c.key;
 
-  stats.velocity_iterations = resolveVelocities(contacts, v, inverse_mass, h, settings);
-  if (follow_scale_ > 0.0) followRestingImpulses(contacts, x, inverse_mass, follow_scale_);
-  stats.position_iterations = resolvePositions(contacts, x, inverse_mass, settings);
-  stats.iterations = stats.velocity_iterations + stats.position_iterations;
-
-  // What is left: the largest overlap beyond zero and the largest closing speed.
-  stats.max_penetration = 0.0;
-  stats.max_closing_velocity = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Contact& c = contacts[k];
-    if (inverse_mass_sum_[k] <= 0.0) continue;
-    Real violation = 0.0;
-    Vec3 normal = c.normal;
-    if (c.kind == ContactKind::kContact) {
-      violation = c.penetration - (Vec3(displacement_.col(c.a)) -
-                                   (hasB(c) ? Vec3(displacement_.col(c.b)) : Vec3::Zero()))
-                                      .dot(c.normal);
-    } else {
-      Real error;
-      if (!linkState(c, x, normal, error)) continue;
-      violation = c.kind == ContactKind::kRod ? std::abs(error) : error;
+    row.total = 0.0;
+    row.target = 0.0;
+    if (friction) {
+      friction_coefficient_[k] = c.friction;
+      friction_total_[k].setZero();
     }
-    stats.max_penetration = std::max(stats.max_penetration, violation);
-    if (!velocity_active_[k]) continue;
-    const Real v_sep =
-        (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
-    // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
-    const Real allowed = c.kind != ContactKind::kRod ? std::min(Real{0.0}, c.penetration / h) : 0.0;
-    const Real closing = c.kind == ContactKind::kRod ? std::abs(v_sep) : allowed - v_sep;
-    stats.max_closing_velocity = std::max(stats.max_closing_velocity, closing);
-  }
-}
-
-int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
-                                       const ConstScalarMap& inverse_mass, const Real h,
-                                       const CollisionSettings& settings) {
-  const std::size_t count = contacts.size();
-  total_.assign(count, 0.0);
-  target_.assign(count, 0.0);
-  const auto separating = [&](const Contact& c) {
-    return (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
-  };
-  // Contacts mostly come in the order of their keys, so each lookup starts where the last one
-  // ended: everything before `hint` is below the last key, hence below any key not smaller.
-  const auto key_below = [](const WarmStart& entry, const std::uint64_t key) {
-    return entry.key < key;
-  };
-  friction_total_.assign(count, Vec3::Zero());
-  auto hint = warm_impulses_.begin();
-  std::uint64_t hint_key = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Contact& c = contacts[k];
-    if (!velocity_active_[k]) continue;
-    if (c.key < hint_key) hint = warm_impulses_.begin();
-    auto it = hint;
-    for (int probe = 0; probe < 4 && it != warm_impulses_.end() && it->key < c.key; ++probe) {
-      ++it;
-    }
-    if (it != warm_impulses_.end() && it->key < c.key) {
-      it = std::lower_bound(it, warm_impulses_.end(), c.key, key_below);
-    }
-    hint = it;
-    hint_key = c.key;
-    const bool found = it != warm_impulses_.end() && it->key == c.key;
-    const Real previous = found ? it->normal : 0.0;
+    const std::ptrdiff_t found = findWarm(c.key, cursor);
+    if (!active) continue;
+    const Real previous = found >= 0 ? warm_[found].normal : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
     // passes converge, so a bounce must not be re-evaluated from a half-solved state). A contact
     // or cable that already pushed or pulled in the last substep is holding, not hitting.
-    if (c.kind == ContactKind::kContact && resting_[k] && follow_scale_ > 0.0) {
+    if (c.kind == ContactKind::kContact && resting && follow_scale_ > 0.0) {
       // A resting contact moves by beta h (v''_sep - v'_sep) after this phase, which leaves the
       // overlap p - beta h (v''_sep - v'_sep): aim at touching when that is within reach, never
       // at pushing apart (overlap beyond the slop is the position passes' work).
-      target_[k] = std::min(Real{0.0}, separating(c) + c.penetration / follow_scale_);
+      row.target = std::min(Real{0.0}, v_sep + c.penetration / follow_scale_);
     } else if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
       // A gap g may close at up to g / h within the substep, no faster.
-      target_[k] = c.penetration / h;
-    } else if (c.kind != ContactKind::kRod && !resting_[k] && previous <= 0.0) {
-      target_[k] = -c.restitution * std::min(Real{0.0}, separating(c) - built_velocity_[k]);
+      row.target = c.penetration / h;
+    } else if (c.kind != ContactKind::kRod && !resting && previous <= 0.0) {
+      row.target = -c.restitution * std::min(Real{0.0}, v_sep - built_velocity);
     }
-    total_[k] = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
-    if (found && c.kind == ContactKind::kContact && c.friction > 0.0) {
+    row.total = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
+    if (found >= 0 && friction) {
       // The last friction impulse, in the current tangent plane and within mu j_n.
-      Vec3 friction = it->friction - it->friction.dot(c.normal) * c.normal;
-      const Real limit = c.friction * total_[k];
-      const Real magnitude = friction.norm();
-      if (magnitude > limit) friction *= limit / magnitude;
-      friction_total_[k] = friction;
+      const Vec3& last = warm_[found].friction;
+      Vec3 friction_impulse = last - last.dot(c.normal) * c.normal;
+      const Real limit = c.friction * row.total;
+      const Real magnitude = friction_impulse.norm();
+      if (magnitude > limit) friction_impulse *= limit / magnitude;
+      friction_total_[k] = friction_impulse;
     }
   }
-  // Warm start: each constraint begins with the impulse it ended the last substep with.
+  // Warm start: each constraint begins with the impulse it ended the last substep with (applied
+  // after every target is fixed).
   for (std::size_t k = 0; k < count; ++k) {
-    const Real j = total_[k];
-    if (j == 0.0) continue;
-    const Contact& c = contacts[k];
-    const Vec3 impulse = j * c.normal + friction_total_[k];
-    v.col(c.a) += inverse_mass[c.a] * impulse;
-    touch(c.a);
-    if (hasB(c)) {
-      v.col(c.b) -= inverse_mass[c.b] * impulse;
-      touch(c.b);
+    const Row& row = rows_[k];
+    if (row.total == 0.0) continue;
+    const Vec3 impulse = (row.flags & kFriction) ? Vec3(row.total * row.normal + friction_total_[k])
+                                                 : Vec3(row.total * row.normal);
+    v.col(row.a) += inverse_mass[row.a] * impulse;
+    touch(row.a);
+    if (row.flags & kHasB) {
+      v.col(row.b) -= inverse_mass[row.b] * impulse;
+      touch(row.b);
     }
   }
+}
 
+int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
+                                       const CollisionSettings& settings) {
+  const std::size_t count = rows_.size();
   int passes = 0;
   while (passes < settings.max_iterations) {
     ++passes;
@@ -212,131 +209,172 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
     const bool backward = passes % 2 == 0;
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
-      if (!velocity_active_[k]) continue;
-      const Real w_sum = inverse_mass_sum_[k];
-      const Contact& c = contacts[k];
-      const bool b = hasB(c);
-      const Real wa = inverse_mass[c.a];
-      const Real wb = b ? inverse_mass[c.b] : 0.0;
+      Row& row = rows_[k];
+      if (!(row.flags & kActive)) continue;
+      const bool b = row.flags & kHasB;
+      const Real w_sum = row.inverse_mass_sum;
+      const Real wa = inverse_mass[row.a];
+      const Real wb = b ? inverse_mass[row.b] : 0.0;
+      Vec3 relative = v.col(row.a);
+      if (b) relative -= v.col(row.b);
       // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
       // together / push apart in total, rods act either way.
-      Real total = total_[k] + (target_[k] - separating(c)) / w_sum;
-      if (c.kind != ContactKind::kRod) total = std::max(Real{0.0}, total);
-      const Real j = total - total_[k];
-      total_[k] = total;
+      Real total = row.total + (row.target - relative.dot(row.normal)) / w_sum;
+      if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
+      const Real j = total - row.total;
+      row.total = total;
       if (j != 0.0) {
-        v.col(c.a) += (j * wa) * c.normal;
-        if (b) v.col(c.b) -= (j * wb) * c.normal;
-        if (wa > 0.0) touch(c.a);
-        if (b && wb > 0.0) touch(c.b);
+        v.col(row.a) += (j * wa) * row.normal;
+        if (b) v.col(row.b) -= (j * wb) * row.normal;
+        if (wa > 0.0) touch(row.a);
+        if (b && wb > 0.0) touch(row.b);
         largest_change = std::max(largest_change, std::abs(j * w_sum));
       }
-      if (c.kind == ContactKind::kContact && c.friction > 0.0) {
+      if (row.flags & kFriction) {
         // Coulomb: the total tangential impulse removes slip but stays within mu j_n.
-        const Vec3 relative = Vec3(v.col(c.a)) - (b ? Vec3(v.col(c.b)) : Vec3::Zero());
-        const Vec3 slip = relative - relative.dot(c.normal) * c.normal;
+        Vec3 slip = v.col(row.a);
+        if (b) slip -= v.col(row.b);
+        slip -= slip.dot(row.normal) * row.normal;
         Vec3 friction = friction_total_[k] - slip / w_sum;
-        const Real limit = c.friction * total_[k];
+        const Real limit = friction_coefficient_[k] * row.total;
         const Real magnitude = friction.norm();
         if (magnitude > limit) friction *= limit / magnitude;
         const Vec3 change = friction - friction_total_[k];
         friction_total_[k] = friction;
-        v.col(c.a) += wa * change;
-        if (b) v.col(c.b) -= wb * change;
+        v.col(row.a) += wa * change;
+        if (b) v.col(row.b) -= wb * change;
         largest_change = std::max(largest_change, change.norm() * w_sum);
       }
     }
     if (largest_change <= settings.velocity_tolerance) break;
   }
-  next_warm_impulses_.clear();
+  // Kept for the next substep, in contact order.
   for (std::size_t k = 0; k < count; ++k) {
-    if (velocity_active_[k] && total_[k] != 0.0) {
-      next_warm_impulses_.push_back({contacts[k].key, total_[k], friction_total_[k]});
-    }
+    const Row& row = rows_[k];
+    const bool keep = (row.flags & kActive) && row.total != 0.0;
+    next_warm_[k].normal = keep ? row.total : 0.0;
+    next_warm_[k].friction =
+        keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
   }
-  const auto by_key = [](const WarmStart& x, const WarmStart& y) { return x.key < y.key; };
-  if (!std::is_sorted(next_warm_impulses_.begin(), next_warm_impulses_.end(), by_key)) {
-    std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end(), by_key);
-  }
-  warm_impulses_.swap(next_warm_impulses_);
+  warm_.swap(next_warm_);
+  warm_by_key_.clear();
   return passes;
 }
 
-void ContactResolver::followRestingImpulses(const std::vector<Contact>& contacts, Vec3Map& x,
-                                            const ConstScalarMap& inverse_mass, const Real scale) {
-  const std::size_t count = contacts.size();
+Real ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
+                                            const ConstScalarMap& inverse_mass, const Real h) {
+  const std::size_t count = rows_.size();
+  const Real scale = follow_scale_;
+  Real max_closing = 0.0;
   for (std::size_t k = 0; k < count; ++k) {
-    const Contact& c = contacts[k];
-    if (c.kind != ContactKind::kContact || !resting_[k] || !velocity_active_[k]) continue;
-    const Vec3 impulse = total_[k] * c.normal + friction_total_[k];
+    const Row& row = rows_[k];
+    if (!(row.flags & kActive)) continue;
+    const bool b = row.flags & kHasB;
+    Vec3 relative = v.col(row.a);
+    if (b) relative -= v.col(row.b);
+    const Real v_sep = relative.dot(row.normal);
+    // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
+    const Real closing = row.kind == ContactKind::kRod
+                             ? std::abs(v_sep)
+                             : std::min(Real{0.0}, penetration_[k] / h) - v_sep;
+    max_closing = std::max(max_closing, closing);
+    if (scale <= 0.0 || row.kind != ContactKind::kContact || !(row.flags & kResting)) continue;
+    const Vec3 impulse = (row.flags & kFriction) ? Vec3(row.total * row.normal + friction_total_[k])
+                                                 : Vec3(row.total * row.normal);
     if (impulse.isZero(0.0)) continue;
     // dx = beta h w J: the move the integrator would have made had the impulse been in the step.
-    const Real wa = inverse_mass[c.a];
+    const Real wa = inverse_mass[row.a];
     if (wa > 0.0) {
       const Vec3 move_a = (scale * wa) * impulse;
-      x.col(c.a) += move_a;
-      displacement_.col(c.a) += move_a;
-      touch(c.a);
+      x.col(row.a) += move_a;
+      displacement_.col(row.a) += move_a;
+      touch(row.a);
     }
-    if (hasB(c)) {
-      const Real wb = inverse_mass[c.b];
+    if (b) {
+      const Real wb = inverse_mass[row.b];
       if (wb > 0.0) {
         const Vec3 move_b = (-scale * wb) * impulse;
-        x.col(c.b) += move_b;
-        displacement_.col(c.b) += move_b;
-        touch(c.b);
+        x.col(row.b) += move_b;
+        displacement_.col(row.b) += move_b;
+        touch(row.b);
       }
     }
   }
+  return max_closing;
 }
 
-int ContactResolver::resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
+int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
                                       const ConstScalarMap& inverse_mass,
-                                      const CollisionSettings& settings) {
-  const std::size_t count = contacts.size();
+                                      const CollisionSettings& settings, Real& max_penetration) {
+  const std::size_t count = rows_.size();
   const Real slop = settings.penetration_slop;
   int passes = 0;
-  while (passes < settings.max_iterations) {
+  bool corrected = true;
+  while (corrected && passes < settings.max_iterations) {
     ++passes;
-    bool corrected = false;
+    corrected = false;
+    max_penetration = 0.0;
     const bool backward = passes % 2 == 0;
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
-      const Real w_sum = inverse_mass_sum_[k];
+      const Row& row = rows_[k];
+      const Real w_sum = row.inverse_mass_sum;
       if (w_sum <= 0.0) continue;
-      const Contact& c = contacts[k];
-      const bool b = hasB(c);
-      Vec3 normal = c.normal;
+      const bool b = row.flags & kHasB;
+      Vec3 normal = row.normal;
       Real correction = 0.0;
-      if (c.kind == ContactKind::kContact) {
-        const Real depth = c.penetration - (Vec3(displacement_.col(c.a)) -
-                                            (b ? Vec3(displacement_.col(c.b)) : Vec3::Zero()))
-                                               .dot(normal);
+      if (row.kind == ContactKind::kContact) {
+        Vec3 moved = displacement_.col(row.a);
+        if (b) moved -= displacement_.col(row.b);
+        const Real depth = penetration_[k] - moved.dot(normal);
+        max_penetration = std::max(max_penetration, depth);
         if (depth <= slop) continue;
         correction = depth - 0.5 * slop;
       } else {
         Real error;
-        if (!linkState(c, x, normal, error)) continue;
-        const Real allowed = settings.rod_tolerance * c.length;
-        if (c.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) continue;
+        if (!linkState(contacts[k], x, normal, error)) continue;
+        max_penetration =
+            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+        const Real allowed = settings.rod_tolerance * contacts[k].length;
+        if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
+          continue;
+        }
         correction = error;
       }
       // dp_a = w_a / (w_a + w_b) d n,  dp_b = -w_b / (w_a + w_b) d n
-      const Real wa = inverse_mass[c.a];
+      const Real wa = inverse_mass[row.a];
       const Vec3 move_a = (correction * wa / w_sum) * normal;
-      x.col(c.a) += move_a;
-      displacement_.col(c.a) += move_a;
-      if (wa > 0.0) touch(c.a);
+      x.col(row.a) += move_a;
+      displacement_.col(row.a) += move_a;
+      if (wa > 0.0) touch(row.a);
       if (b) {
-        const Real wb = inverse_mass[c.b];
+        const Real wb = inverse_mass[row.b];
         const Vec3 move_b = (-correction * wb / w_sum) * normal;
-        x.col(c.b) += move_b;
-        displacement_.col(c.b) += move_b;
-        if (wb > 0.0) touch(c.b);
+        x.col(row.b) += move_b;
+        displacement_.col(row.b) += move_b;
+        if (wb > 0.0) touch(row.b);
       }
       corrected = true;
     }
-    if (!corrected) break;
+  }
+  if (corrected) {
+    // Stopped by max_iterations: measure what the last corrections left.
+    max_penetration = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Row& row = rows_[k];
+      if (row.inverse_mass_sum <= 0.0) continue;
+      if (row.kind == ContactKind::kContact) {
+        Vec3 moved = displacement_.col(row.a);
+        if (row.flags & kHasB) moved -= displacement_.col(row.b);
+        max_penetration = std::max(max_penetration, penetration_[k] - moved.dot(row.normal));
+      } else {
+        Vec3 normal;
+        Real error;
+        if (!linkState(contacts[k], x, normal, error)) continue;
+        max_penetration =
+            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+      }
+    }
   }
   return passes;
 }

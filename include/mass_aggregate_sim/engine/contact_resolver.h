@@ -45,14 +45,18 @@ class ContactResolver {
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
-  void clearWarmStart() { warm_impulses_.clear(); }
+  void clearWarmStart() {
+    warm_.clear();
+    warm_by_key_.clear();
+  }
   // The total normal impulse the contact named `key` ended the last substep with (the impulse
   // kept for warm starting; 0 when it did not act), and that substep's length (0 before any).
   Real lastImpulse(std::uint64_t key) const;
   Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
-    for (const WarmStart& entry : warm_impulses_) {
+    for (const WarmStart& entry : warm_) {
+      if (entry.normal == 0.0 && entry.friction.isZero(0.0)) continue;
       hasher.add(entry.key);
       hasher.add(entry.normal);
       if (!entry.friction.isZero(0.0)) hasher.add(entry.friction);
@@ -60,35 +64,58 @@ class ContactResolver {
   }
 
  private:
-  void touch(std::uint32_t i);
-  int resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
-                        const ConstScalarMap& inverse_mass, Real h,
-                        const CollisionSettings& settings);
-  void followRestingImpulses(const std::vector<Contact>& contacts, Vec3Map& x,
-                             const ConstScalarMap& inverse_mass, Real scale);
-  int resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
-                       const ConstScalarMap& inverse_mass, const CollisionSettings& settings);
-  // For a link: current normal (from a towards b) and length error; false when degenerate.
-  bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
-
-  // Per contact: w_a + w_b, closing velocity the forces built while in contact (<= 0), and
-  // whether the contact is resting.
-  std::vector<Real> inverse_mass_sum_;
-  std::vector<Real> built_velocity_;
-  std::vector<std::uint8_t> resting_;
-  std::vector<std::uint8_t> velocity_active_;
-  std::vector<Real> total_;           // per contact: accumulated normal impulse this substep
-  std::vector<Real> target_;          // per contact: target separating velocity
-  std::vector<Vec3> friction_total_;  // per contact: accumulated friction impulse
   // What a contact ended the last substep with: the warm start of the next one.
   struct WarmStart {
     std::uint64_t key;
     Real normal;    // normal impulse
     Vec3 friction;  // friction impulse (world frame)
   };
-  // Sorted by key.
-  std::vector<WarmStart> warm_impulses_;
-  std::vector<WarmStart> next_warm_impulses_;
+  enum RowFlag : std::uint8_t {
+    kHasB = 1,         // a second particle (else a collider or an anchor)
+    kActive = 2,       // takes part in the velocity phase
+    kResting = 4,      // resting: target 0 (or touching), follows its impulse in position
+    kFriction = 8,     // a contact with friction > 0
+    kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
+  };
+  // The velocity phase's view of one constraint, in one cache line.
+  struct Row {
+    std::uint32_t a;
+    std::uint32_t b;  // a when there is no second particle (never moved: w_b = 0)
+    std::uint8_t flags;
+    ContactKind kind;
+    Vec3 normal;
+    Real inverse_mass_sum;  // w_a + w_b; 0: inactive
+    Real total;             // accumulated normal impulse this substep
+    Real target;            // target separating velocity
+  };
+
+  void touch(std::uint32_t i);
+  // Index into warm_ of the entry named `key`, or -1; `cursor` follows the contact order.
+  std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
+  void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+               const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
+               Real h);
+  int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
+                        const CollisionSettings& settings);
+  // Moves resting contacts' particles with their impulses; returns the largest closing speed left.
+  Real followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass,
+                             Real h);
+  void indexWarmByKey() const;
+  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
+                       const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
+                       Real& max_penetration);
+  // For a link: current normal (from a towards b) and length error; false when degenerate.
+  bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
+
+  std::vector<Row> rows_;
+  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
+  std::vector<Real> friction_coefficient_;
+  std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
+  // Per row of the last substep, in the order of its contacts (so a settled scene finds each
+  // entry at the cursor), and (key, index) sorted by key for the others, built when needed.
+  std::vector<WarmStart> warm_;
+  std::vector<WarmStart> next_warm_;
+  mutable std::vector<std::pair<std::uint64_t, std::uint32_t>> warm_by_key_;
   Real last_substep_ = 0.0;
   Real follow_scale_ = 0.0;  // beta h of the last resolve()
   Vec3Array displacement_;
