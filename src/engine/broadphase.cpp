@@ -241,11 +241,25 @@ bool BroadphaseFinder::denseGrid(const Vec3Array& lo, const Vec3Array& hi, const
     if (box_cell_[i] != kNoCell) cell_boxes_[bucket_cursor_[box_cell_[i]]++] = i;
   }
 
+  // The boxes in cell order, so the tests below read memory in sequence.
+  sorted_boxes_.resize(cell_boxes_.size());
+  for (std::size_t s = 0; s < cell_boxes_.size(); ++s) {
+    const std::uint32_t i = cell_boxes_[s];
+    sorted_boxes_[s] = {lo(0, i), lo(1, i), lo(2, i), hi(0, i), hi(1, i), hi(2, i)};
+  }
+  const auto overlap = [this](const std::uint32_t s, const std::uint32_t t) {
+    const Box& p = sorted_boxes_[s];
+    const Box& q = sorted_boxes_[t];
+    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] &&
+           q[2] <= p[5];
+  };
+
   // Each cell against itself and the 13 neighbours that come after it in (z, y, x) order, so a
-  // pair of neighbouring cells is visited once.
-  std::int64_t offsets[13];
-  int offset_count = 0;
-  std::array<std::int64_t, 3> cell_index{};
+  // pair of neighbouring cells is visited once. Cells x - 1, x, x + 1 of a row are contiguous in
+  // the sorted boxes: the 13 cells are 5 ranges (x + 1; row y + 1; rows y - 1, y, y + 1 of z + 1).
+  std::uint32_t range_begin[5];
+  std::uint32_t range_end[5];
+  std::size_t used = 0;
   for (std::int64_t z = 0; z < dims[2]; ++z) {
     for (std::int64_t y = 0; y < dims[1]; ++y) {
       for (std::int64_t x = 0; x < dims[0]; ++x) {
@@ -253,37 +267,43 @@ bool BroadphaseFinder::denseGrid(const Vec3Array& lo, const Vec3Array& hi, const
         const std::uint32_t begin = cell_start_[c];
         const std::uint32_t end = cell_start_[c + 1];
         if (begin == end) continue;
-        cell_index = {x, y, z};
-        offset_count = 0;
-        for (int dz = 0; dz <= 1; ++dz) {
-          for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0))) continue;
-              const std::int64_t nx = cell_index[0] + dx;
-              const std::int64_t ny = cell_index[1] + dy;
-              const std::int64_t nz = cell_index[2] + dz;
-              if (nx < 0 || ny < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
-              offsets[offset_count++] = nx + dims[0] * (ny + dims[1] * nz);
-            }
-          }
+        int ranges = 0;
+        const auto row = [&](const std::int64_t ny, const std::int64_t nz, const std::int64_t x0) {
+          if (ny < 0 || ny >= dims[1] || nz >= dims[2]) return;
+          const std::int64_t first = x + dims[0] * (ny + dims[1] * nz);
+          const std::int64_t from = first + (std::max<std::int64_t>(x0, 0) - x);
+          const std::int64_t to = first + (std::min<std::int64_t>(x + 1, dims[0] - 1) - x) + 1;
+          if (from >= to) return;
+          range_begin[ranges] = cell_start_[from];
+          range_end[ranges] = cell_start_[to];
+          ++ranges;
+        };
+        row(y, z, x + 1);
+        row(y + 1, z, x - 1);
+        for (std::int64_t ny = y - 1; ny <= y + 1; ++ny) row(ny, z + 1, x - 1);
+        std::size_t candidates = end - begin;
+        for (int r = 0; r < ranges; ++r) candidates += range_end[r] - range_begin[r];
+        if (pairs.size() < used + candidates * (end - begin)) {
+          pairs.resize(std::max(2 * pairs.size(), used + candidates * (end - begin)));
         }
+        // Every candidate is written and kept only when it overlaps (no branch to mispredict).
         for (std::uint32_t s = begin; s < end; ++s) {
           const std::uint32_t p = cell_boxes_[s];
           for (std::uint32_t t = s + 1; t < end; ++t) {
-            const std::uint32_t q = cell_boxes_[t];
-            if (boxesOverlap(lo, hi, p, q)) pairs.push_back(ordered(p, q));
+            pairs[used] = ordered(p, cell_boxes_[t]);
+            used += overlap(s, t);
           }
-          for (int o = 0; o < offset_count; ++o) {
-            const std::int64_t other = offsets[o];
-            for (std::uint32_t t = cell_start_[other]; t < cell_start_[other + 1]; ++t) {
-              const std::uint32_t q = cell_boxes_[t];
-              if (boxesOverlap(lo, hi, p, q)) pairs.push_back(ordered(p, q));
+          for (int r = 0; r < ranges; ++r) {
+            for (std::uint32_t t = range_begin[r]; t < range_end[r]; ++t) {
+              pairs[used] = ordered(p, cell_boxes_[t]);
+              used += overlap(s, t);
             }
           }
         }
       }
     }
   }
+  pairs.resize(used);
   return true;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -63,6 +64,8 @@ class BroadphaseFinder {
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> box_cell_;
   std::vector<std::uint32_t> cell_boxes_;
+  using Box = std::array<Real, 6>;  // lo x, y, z, hi x, y, z
+  std::vector<Box> sorted_boxes_;
 };
 
 // The O(N^2) reference: every overlapping pair, tested one by one. For tests only.
