@@ -31,10 +31,10 @@ bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal
 }
 
 void ContactResolver::indexWarmByKey() const {
-  if (warm_by_key_.size() == warm_.size()) return;
+  if (warm_by_key_.size() == warm_key_.size()) return;
   warm_by_key_.clear();
-  for (std::size_t k = 0; k < warm_.size(); ++k) {
-    warm_by_key_.emplace_back(warm_[k].key, static_cast<std::uint32_t>(k));
+  for (std::size_t k = 0; k < warm_key_.size(); ++k) {
+    warm_by_key_.emplace_back(warm_key_[k], static_cast<std::uint32_t>(k));
   }
   std::sort(warm_by_key_.begin(), warm_by_key_.end());
 }
@@ -43,13 +43,13 @@ Real ContactResolver::lastImpulse(const std::uint64_t key) const {
   indexWarmByKey();
   const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
                                    std::pair<std::uint64_t, std::uint32_t>{key, 0});
-  return it != warm_by_key_.end() && it->first == key ? warm_[it->second].normal : 0.0;
+  return it != warm_by_key_.end() && it->first == key ? warm_normal_[it->second] : 0.0;
 }
 
 std::ptrdiff_t ContactResolver::findWarm(const std::uint64_t key, std::size_t& cursor) {
   // A settled scene lists its contacts in the same order every substep: the entry is at the
   // cursor. Else a binary search by key, after which the cursor follows from there.
-  if (cursor < warm_.size() && warm_[cursor].key == key)
+  if (cursor < warm_key_.size() && warm_key_[cursor] == key)
     return static_cast<std::ptrdiff_t>(cursor++);
   indexWarmByKey();
   const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
@@ -94,7 +94,9 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
   penetration_.resize(count);
   friction_coefficient_.resize(count);
   friction_total_.resize(count);
-  next_warm_.resize(count);
+  next_warm_key_.resize(count);
+  next_warm_normal_.resize(count);
+  any_friction_ = false;
   std::size_t cursor = 0;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];
@@ -146,7 +148,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     row.flags = static_cast<std::uint8_t>((b ? kHasB : 0) | (active ? kActive : 0) |
                                           (resting ? kResting : 0) | (friction ? kFriction : 0) |
                                           (c.kind != ContactKind::kRod ? kUnilateral : 0));
-    next_warm_[k].key = c.key;
+    next_warm_key_[k] = c.key;
+    any_friction_ = any_friction_ || friction;
 
     row.total = 0.0;
     row.target = 0.0;
@@ -156,7 +159,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     }
     const std::ptrdiff_t found = findWarm(c.key, cursor);
     if (!active) continue;
-    const Real previous = found >= 0 ? warm_[found].normal : 0.0;
+    const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
     // passes converge, so a bounce must not be re-evaluated from a half-solved state). A contact
     // or cable that already pushed or pulled in the last substep is holding, not hitting.
@@ -172,9 +175,9 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       row.target = -c.restitution * std::min(Real{0.0}, v_sep - built_velocity);
     }
     row.total = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
-    if (found >= 0 && friction) {
+    if (found >= 0 && friction && !warm_friction_.empty()) {
       // The last friction impulse, in the current tangent plane and within mu j_n.
-      const Vec3& last = warm_[found].friction;
+      const Vec3& last = warm_friction_[found];
       Vec3 friction_impulse = last - last.dot(c.normal) * c.normal;
       const Real limit = c.friction * row.total;
       const Real magnitude = friction_impulse.norm();
@@ -248,16 +251,6 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
     }
     if (largest_change <= settings.velocity_tolerance) break;
   }
-  // Kept for the next substep, in contact order.
-  for (std::size_t k = 0; k < count; ++k) {
-    const Row& row = rows_[k];
-    const bool keep = (row.flags & kActive) && row.total != 0.0;
-    next_warm_[k].normal = keep ? row.total : 0.0;
-    next_warm_[k].friction =
-        keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
-  }
-  warm_.swap(next_warm_);
-  warm_by_key_.clear();
   return passes;
 }
 
@@ -266,8 +259,16 @@ Real ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
   const std::size_t count = rows_.size();
   const Real scale = follow_scale_;
   Real max_closing = 0.0;
+  next_warm_friction_.resize(any_friction_ ? count : 0);
   for (std::size_t k = 0; k < count; ++k) {
     const Row& row = rows_[k];
+    // Kept for the next substep, in contact order.
+    const bool keep = (row.flags & kActive) && row.total != 0.0;
+    next_warm_normal_[k] = keep ? row.total : 0.0;
+    if (any_friction_) {
+      next_warm_friction_[k] =
+          keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
+    }
     if (!(row.flags & kActive)) continue;
     const bool b = row.flags & kHasB;
     Vec3 relative = v.col(row.a);
@@ -300,6 +301,10 @@ Real ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
       }
     }
   }
+  warm_key_.swap(next_warm_key_);
+  warm_normal_.swap(next_warm_normal_);
+  warm_friction_.swap(next_warm_friction_);
+  warm_by_key_.clear();
   return max_closing;
 }
 

@@ -46,7 +46,9 @@ class ContactResolver {
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
   void clearWarmStart() {
-    warm_.clear();
+    warm_key_.clear();
+    warm_normal_.clear();
+    warm_friction_.clear();
     warm_by_key_.clear();
   }
   // The total normal impulse the contact named `key` ended the last substep with (the impulse
@@ -55,21 +57,16 @@ class ContactResolver {
   Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
-    for (const WarmStart& entry : warm_) {
-      if (entry.normal == 0.0 && entry.friction.isZero(0.0)) continue;
-      hasher.add(entry.key);
-      hasher.add(entry.normal);
-      if (!entry.friction.isZero(0.0)) hasher.add(entry.friction);
+    for (std::size_t k = 0; k < warm_key_.size(); ++k) {
+      const bool friction = !warm_friction_.empty() && !warm_friction_[k].isZero(0.0);
+      if (warm_normal_[k] == 0.0 && !friction) continue;
+      hasher.add(warm_key_[k]);
+      hasher.add(warm_normal_[k]);
+      if (friction) hasher.add(warm_friction_[k]);
     }
   }
 
  private:
-  // What a contact ended the last substep with: the warm start of the next one.
-  struct WarmStart {
-    std::uint64_t key;
-    Real normal;    // normal impulse
-    Vec3 friction;  // friction impulse (world frame)
-  };
   enum RowFlag : std::uint8_t {
     kHasB = 1,         // a second particle (else a collider or an anchor)
     kActive = 2,       // takes part in the velocity phase
@@ -90,14 +87,15 @@ class ContactResolver {
   };
 
   void touch(std::uint32_t i);
-  // Index into warm_ of the entry named `key`, or -1; `cursor` follows the contact order.
+  // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
   void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
                Real h);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
-  // Moves resting contacts' particles with their impulses; returns the largest closing speed left.
+  // Keeps the impulses for the next substep and moves resting contacts' particles with theirs;
+  // returns the largest closing speed left.
   Real followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass,
                              Real h);
   void indexWarmByKey() const;
@@ -111,10 +109,18 @@ class ContactResolver {
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
-  // Per row of the last substep, in the order of its contacts (so a settled scene finds each
-  // entry at the cursor), and (key, index) sorted by key for the others, built when needed.
-  std::vector<WarmStart> warm_;
-  std::vector<WarmStart> next_warm_;
+  // The warm starts are per row of the last substep, in the order of its contacts (so a settled
+  // scene finds each at the cursor), with (key, index) sorted by key for the others, built when
+  // needed.
+  // What each contact ended the last substep with: key, normal impulse and friction impulse
+  // (world frame; empty when no contact had friction).
+  std::vector<std::uint64_t> warm_key_;
+  std::vector<Real> warm_normal_;
+  std::vector<Vec3> warm_friction_;
+  std::vector<std::uint64_t> next_warm_key_;
+  std::vector<Real> next_warm_normal_;
+  std::vector<Vec3> next_warm_friction_;
+  bool any_friction_ = false;  // some row of this substep has friction
   mutable std::vector<std::pair<std::uint64_t, std::uint32_t>> warm_by_key_;
   Real last_substep_ = 0.0;
   Real follow_scale_ = 0.0;  // beta h of the last resolve()
