@@ -21,12 +21,13 @@ void ContactResolver::touch(const std::uint32_t i) {
 
 bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal,
                                 Real& error) const {
-  const Vec3 other = hasB(c) ? Vec3(x.col(c.b)) : c.anchor;
+  const LinkGeometry& link = (*links_)[c.link];
+  const Vec3 other = hasB(c) ? Vec3(x.col(c.b)) : link.anchor;
   const Vec3 d = other - x.col(c.a);
   const Real length = d.norm();
   if (length < kMinLinkLength) return false;
   normal = d / length;
-  error = length - c.length;
+  error = length - link.length;
   return true;
 }
 
@@ -59,7 +60,8 @@ std::ptrdiff_t ContactResolver::findWarm(const std::uint64_t key, std::size_t& c
   return it->second;
 }
 
-void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
+void ContactResolver::resolve(std::vector<Contact>& contacts,
+                              const std::vector<LinkGeometry>& links, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
@@ -70,6 +72,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
   }
   touched_.clear();
   last_substep_ = h;
+  links_ = &links;
   follow_scale_ = h * position_weight;
   const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
@@ -84,6 +87,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
   stats.position_iterations =
       resolvePositions(contacts, x, inverse_mass, settings, stats.max_penetration);
   stats.iterations = stats.velocity_iterations + stats.position_iterations;
+  links_ = nullptr;
 }
 
 void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
@@ -340,7 +344,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
         if (!linkState(contacts[k], x, normal, error)) continue;
         max_penetration =
             std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
-        const Real allowed = settings.rod_tolerance * contacts[k].length;
+        const Real allowed = settings.rod_tolerance * (*links_)[contacts[k].link].length;
         if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
           continue;
         }

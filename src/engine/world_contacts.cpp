@@ -530,8 +530,8 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
     c.a = a;
     c.b = b;
     c.kind = kind;
-    c.anchor = anchor;
-    c.length = length;
+    c.link = static_cast<std::uint32_t>(ws.links.size());
+    ws.links.push_back(LinkGeometry{anchor, length});
     c.restitution = restitution;
     c.key = linkContactKey(id);
     sink.push(c);
@@ -605,6 +605,7 @@ void World::resolveContacts(const Real h) {
   }
 
   ws.contacts.clear();
+  ws.links.clear();
   generateContacts(ws, dropped_this_step_);
   if (bottom_up && ws.contacts.size() > 1) {
     // Bottom up along gravity (colliders first): a forward pass carries the support from the
@@ -622,7 +623,7 @@ void World::resolveContacts(const Real h) {
     }
   }
 
-  ws.resolver.resolve(ws.contacts, particles_.positions(), particles_.velocities(),
+  ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
                       particles_.inverseMasses(), acceleration_, h, settings,
                       positionWeight(config_.integrator), last_contact_stats_);
   last_contact_stats_.contacts = ws.contacts.size();

@@ -38,10 +38,11 @@ class ContactResolver {
   // velocity phase each particle moves by beta h w J for the impulses J of its resting contacts, as
   // if those impulses had been forces inside the step: a resting particle then ends where it
   // started instead of sinking by beta g h^2 for the position passes to push back up.
-  void resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
-               const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h, const CollisionSettings& settings, Real position_weight,
-               ContactStats& stats);
+  // links: the geometry of link constraints, by Contact::link.
+  void resolve(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links, Vec3Map x,
+               Vec3Map v, const ConstScalarMap& inverse_mass,
+               const Eigen::Ref<const Vec3Array>& acceleration, Real h,
+               const CollisionSettings& settings, Real position_weight, ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
@@ -104,6 +105,8 @@ class ContactResolver {
                        Real& max_penetration);
   // For a link: current normal (from a towards b) and length error; false when degenerate.
   bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
+
+  const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
 
   std::vector<Row> rows_;
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)

@@ -16,6 +16,7 @@ namespace engine {
 // Buffers the contact phase of World keeps between substeps (never part of the world's state).
 struct ContactWorkspace {
   std::vector<Contact> contacts;
+  std::vector<LinkGeometry> links;  // of the link contacts, by Contact::link
   std::vector<Contact> sorted_contacts;
   // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.
   std::vector<std::uint32_t> particle_bucket;
