@@ -94,6 +94,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
   const std::size_t count = contacts.size();
+  // |a| of every particle in one independent loop, not twice per contact in the dependent one.
+  acceleration_norm_.resize(static_cast<std::size_t>(acceleration.cols()));
+  for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
+    acceleration_norm_[i] = acceleration.col(i).norm();
+  }
   rows_.resize(count);
   penetration_.resize(count);
   friction_coefficient_.resize(count);
@@ -113,10 +118,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     const Real wb = b ? inverse_mass[c.b] : 0.0;
     Real w_sum = wa + wb;
     Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
-    Real acceleration_bound = wa > 0.0 ? relative_acceleration.norm() : 0.0;
+    Real acceleration_bound = wa > 0.0 ? acceleration_norm_[c.a] : 0.0;
     if (b && wb > 0.0) {
       relative_acceleration -= acceleration.col(c.b);
-      acceleration_bound += acceleration.col(c.b).norm();
+      acceleration_bound += acceleration_norm_[c.b];
     }
     if (c.kind != ContactKind::kContact) {
       Vec3 normal;

@@ -447,7 +447,6 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       const Vec3 xi = x.col(i);
       const Real r = radius[i];
       const auto index = static_cast<std::uint32_t>(i);
-      const std::uint32_t slot = particles_.idAt(i).index;
       // The collider a swept test stopped this particle at gets a contact even when just touching.
       const ContactWorkspace::ColliderHit* hit = nullptr;
       if (swept && ws.collider_hit[i] >= 0 &&
@@ -460,9 +459,9 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
           // Stopped at its time of impact: touching, whatever rounding says.
           const ShapeContact touching{shape ? shape->normal : hit->normal,
                                       shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
-          sink.push(colliderContact(index, slot, id, touching, material));
+          sink.push(colliderContact(index, particles_.idAt(i).index, id, touching, material));
         } else if (shape) {
-          sink.push(colliderContact(index, slot, id, *shape, material));
+          sink.push(colliderContact(index, particles_.idAt(i).index, id, *shape, material));
         }
       };
       for (const PlaneCollider& c : colliders_.planes)
