@@ -123,6 +123,30 @@ void heightBuckets(const ConstVec3Map& x, const ConstScalarMap& radius, const Ve
   }
 }
 
+// The candidate pairs are found for boxes grown by this skin and kept while no particle has moved
+// more than half of it (a quarter of the smallest radius): two spheres that were not candidates
+// were more than the skin apart on some axis, so they cannot touch yet.
+Real candidateSkin(const Eigen::Ref<const ScalarArray>& radius) {
+  const Real smallest = radius.size() > 0 ? radius.minCoeff() : 0.0;
+  return std::isfinite(smallest) && smallest > 0.0 ? 0.25 * smallest : 0.0;
+}
+
+// Whether the candidate pairs found in an earlier substep still hold (see ContactWorkspace).
+bool candidatesStillValid(const ContactWorkspace& ws, const ParticleStore& particles,
+                          const CollisionSettings& settings, const Vec3& gravity) {
+  const auto x = particles.positions();
+  const auto radius = particles.radii();
+  if (!ws.candidates_valid || ws.candidate_layout != particles.layoutVersion() ||
+      ws.candidate_positions.cols() != x.cols() || ws.candidate_broadphase != settings.broadphase ||
+      ws.candidate_slop != settings.penetration_slop || ws.candidate_gravity != gravity ||
+      !(ws.candidate_radii.matrix() == radius.matrix())) {
+    return false;
+  }
+  // Moved at most half the skin along every axis since the pairs were found (NaN: not valid).
+  const Real moved = (x - ws.candidate_positions).cwiseAbs().maxCoeff();
+  return moved <= 0.5 * ws.candidate_skin;
+}
+
 // Stable counting sort of `items` by `bucket` (one per item, below `buckets`) through `scratch`;
 // nothing moves when they are already in order.
 template <typename Item>
@@ -561,13 +585,24 @@ void World::resolveContacts(const Real h) {
   const bool swept = settings.continuous && static_cast<std::size_t>(ws.substep_start.cols()) == n;
   last_contact_stats_ = ContactStats{};
 
-  ws.pairs.clear();
-  if (settings.particle_collisions && n > 1) {
-    // Boxes around each sphere; with swept tests, around its whole path over the substep.
+  const bool bottom_up = config_.gravity.squaredNorm() > 0.0;
+  std::uint32_t buckets = 0;
+  const auto find_buckets = [&] {
+    if (buckets != 0 || !bottom_up) return;
+    heightBuckets(ConstVec3Map(x.data(), 3, x.cols()), ConstScalarMap(radius.data(), radius.size()),
+                  -config_.gravity.normalized(), ws.particle_bucket, buckets);
+  };
+  if (!(settings.particle_collisions && n > 1)) {
+    ws.pairs.clear();
+    ws.candidates_valid = false;
+  } else if (swept || !candidatesStillValid(ws, particles_, settings, config_.gravity)) {
+    // Boxes around each sphere, grown by the skin; with swept tests, around its whole path over
+    // the substep (then without skin: the list is made again every substep).
+    const Real skin = swept ? 0.0 : candidateSkin(radius);
     ws.box_lo.resize(3, static_cast<Eigen::Index>(n));
     ws.box_hi.resize(3, static_cast<Eigen::Index>(n));
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 r = Vec3::Constant(radius[i] + 0.5 * contactMargin(settings));
+      const Vec3 r = Vec3::Constant(radius[i] + 0.5 * contactMargin(settings) + 0.5 * skin);
       Vec3 lo = x.col(i);
       Vec3 hi = lo;
       if (swept) {
@@ -578,23 +613,28 @@ void World::resolveContacts(const Real h) {
       ws.box_hi.col(i) = hi + r;
     }
     ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
-    if (!settings.collide_linked) buildLinkedPairs(ws);
-  }
-  const bool bottom_up = config_.gravity.squaredNorm() > 0.0;
-  std::uint32_t buckets = 0;
-  if (bottom_up) {
-    heightBuckets(ConstVec3Map(x.data(), 3, x.cols()), ConstScalarMap(radius.data(), radius.size()),
-                  -config_.gravity.normalized(), ws.particle_bucket, buckets);
-  }
-  if (bottom_up && ws.pairs.size() > 1) {
-    // Pairs bottom up, so their contacts come out in the order the resolver wants.
-    ws.item_bucket.resize(ws.pairs.size());
-    for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
-      ws.item_bucket[k] =
-          std::min(ws.particle_bucket[ws.pairs[k].a], ws.particle_bucket[ws.pairs[k].b]);
+    if (bottom_up && ws.pairs.size() > 1) {
+      // Pairs bottom up, so their contacts come out in the order the resolver wants.
+      find_buckets();
+      ws.item_bucket.resize(ws.pairs.size());
+      for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
+        ws.item_bucket[k] =
+            std::min(ws.particle_bucket[ws.pairs[k].a], ws.particle_bucket[ws.pairs[k].b]);
+      }
+      sortByBucket(ws.pairs, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_pairs);
     }
-    sortByBucket(ws.pairs, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_pairs);
+    ws.candidates_valid = !swept;
+    if (ws.candidates_valid) {
+      ws.candidate_skin = skin;
+      ws.candidate_positions = x;
+      ws.candidate_radii = radius;
+      ws.candidate_layout = particles_.layoutVersion();
+      ws.candidate_broadphase = settings.broadphase;
+      ws.candidate_slop = settings.penetration_slop;
+      ws.candidate_gravity = config_.gravity;
+    }
   }
+  if (settings.particle_collisions && n > 1 && !settings.collide_linked) buildLinkedPairs(ws);
   if (swept) {
     sweepParticles(ws);
   } else {
@@ -612,6 +652,7 @@ void World::resolveContacts(const Real h) {
     // only links (listed last) usually need moving.
     // Without links the contacts are the collider ones (bucket 0), then the sorted pairs' ones.
     if (!links_.empty()) {
+      find_buckets();
       ws.item_bucket.resize(ws.contacts.size());
       for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
         const Contact& c = ws.contacts[k];

@@ -22,7 +22,18 @@ struct ContactWorkspace {
   std::vector<std::uint32_t> particle_bucket;
   std::vector<std::uint32_t> item_bucket;
   std::vector<std::uint32_t> bucket_start;
+  // Candidate pairs, kept between substeps while valid: found for boxes grown by candidate_skin,
+  // they hold while no particle moved more than half of it from candidate_positions and nothing
+  // else they depend on changed (particle layout and radii, broadphase, slop, gravity).
   std::vector<IndexPair> pairs;
+  bool candidates_valid = false;
+  Real candidate_skin = 0.0;
+  Vec3Array candidate_positions;
+  ScalarArray candidate_radii;
+  std::uint64_t candidate_layout = 0;
+  Broadphase candidate_broadphase = Broadphase::kSortAndSweep;
+  Real candidate_slop = 0.0;
+  Vec3 candidate_gravity = Vec3::Zero();
   std::vector<IndexPair> sorted_pairs;
   std::vector<std::uint8_t> pair_is_swept;  // per pair: caught by the swept test this substep
   std::vector<std::uint64_t> linked_pairs;  // sorted (min dense << 32 | max dense) of linked pairs
