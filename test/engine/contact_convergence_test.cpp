@@ -139,6 +139,47 @@ TEST(ResolverPasses, FrictionalPileStopsCreeping) {
   EXPECT_LE(world.lastContactStats().velocity_iterations, 2);
 }
 
+// Candidate pairs are kept between substeps while no particle moved more than half the skin (a
+// quarter of the radius): two spheres far apart when the list is made, approaching slowly (the
+// list is kept for about 15 substeps at a time), still meet and bounce off each other, and a third
+// one moved onto them by setPosition is pushed out at once.
+TEST(CandidatePairs, SlowApproachAndTeleportStillCollide) {
+  World world;
+  CollisionSettings settings;
+  settings.particle_collisions = true;
+  settings.particle_restitution = 1.0;
+  ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
+  ParticleSpec spec;
+  spec.radius = kRadius;
+  spec.position = Vec3(-0.25, 0.0, 0.0);
+  spec.velocity = Vec3(0.05, 0.0, 0.0);
+  const ParticleId left = *world.addParticle(spec);
+  spec.position = Vec3(0.25, 0.0, 0.0);
+  spec.velocity = Vec3(-0.05, 0.0, 0.0);
+  const ParticleId right = *world.addParticle(spec);
+  spec.position = Vec3(0.0, 5.0, 0.0);
+  spec.velocity = Vec3::Zero();
+  const ParticleId far = *world.addParticle(spec);
+  const Real slop = settings.penetration_slop;
+  const auto x = [&](const ParticleId id) {
+    return Vec3(world.particles().positions().col(*world.particles().find(id)));
+  };
+  Real closest = 1.0;
+  for (int s = 0; s < 240; ++s) {
+    world.step();
+    closest = std::min(closest, (x(left) - x(right)).norm());
+  }
+  EXPECT_GT(closest, 2.0 * kRadius - slop);
+  EXPECT_LT(closest, 2.0 * kRadius + slop);  // they did meet
+  const auto v = world.particles().velocities();
+  EXPECT_NEAR(v(0, *world.particles().find(left)), -0.05, 1e-9);
+  EXPECT_NEAR(v(0, *world.particles().find(right)), 0.05, 1e-9);
+  // Onto the left one, overlapping it by half a radius.
+  ASSERT_TRUE(world.setPosition(far, x(left) + Vec3(0.0, 1.5 * kRadius, 0.0)).isOk());
+  world.step();
+  EXPECT_GT((x(far) - x(left)).norm(), 2.0 * kRadius - slop);
+}
+
 // The dense grid (boxes of similar size packed in a compact region) finds exactly the pairs of
 // the brute-force test, including boxes exactly one cell apart and boxes touching on a face.
 TEST(Broadphase, DenseGridFindsExactlyTheBruteForcePairs) {
