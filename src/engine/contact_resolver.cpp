@@ -94,11 +94,14 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
   const std::size_t count = contacts.size();
-  // |a| of every particle in one independent loop, not twice per contact in the dependent one.
-  acceleration_norm_.resize(static_cast<std::size_t>(acceleration.cols()));
-  for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
-    acceleration_norm_[i] = acceleration.col(i).norm();
-  }
+  // |a| of every particle in one vectorised loop, not twice per contact in the dependent one.
+  acceleration_norm_ = (acceleration.row(0).array().square() +
+                        acceleration.row(1).array().square() + acceleration.row(2).array().square())
+                           .sqrt()
+                           .transpose();
+  // Targets are measured on the velocities before any warm start; the warm starts go into v as
+  // the rows are made.
+  initial_velocity_ = v;
   rows_.resize(count);
   penetration_.resize(count);
   friction_coefficient_.resize(count);
@@ -136,13 +139,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     row.normal = c.normal;
     row.inverse_mass_sum = w_sum;
     penetration_[k] = c.penetration;
-    // Closing velocity the forces built over the substep, counted only for the fraction of it the
-    // contact already existed: the overlap d, reached at closing speed |v_sep|, took d / |v_sep|.
-    const Real v_sep = (Vec3(v.col(c.a)) - (b ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
+    Vec3 relative_velocity = initial_velocity_.col(c.a);
+    if (b) relative_velocity -= initial_velocity_.col(c.b);
+    const Real v_sep = relative_velocity.dot(c.normal);
     const Real built = std::min(Real{0.0}, relative_acceleration.dot(c.normal) * h);
-    Real in_contact = 1.0;
-    if (v_sep < 0.0) in_contact = std::clamp(c.penetration / (-v_sep * h), Real{0.0}, Real{1.0});
-    const Real built_velocity = built * in_contact;
     // Resting: what is left of the closing speed after removing all the forces built over the
     // substep is below what they can build in two more (explicit Euler moves with the velocity of
     // the step before, so one substep of slack is not enough). Then the target is 0, no bounce.
@@ -181,7 +181,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       // A gap g may close at up to g / h within the substep, no faster.
       row.target = c.penetration / h;
     } else if (c.kind != ContactKind::kRod && !resting && previous <= 0.0) {
-      row.target = -c.restitution * std::min(Real{0.0}, v_sep - built_velocity);
+      // Closing velocity the forces built over the substep, counted only for the fraction of it
+      // the contact already existed: the overlap d, reached at closing speed |v_sep|, took
+      // d / |v_sep|.
+      Real in_contact = 1.0;
+      if (v_sep < 0.0) in_contact = std::clamp(c.penetration / (-v_sep * h), Real{0.0}, Real{1.0});
+      row.target = -c.restitution * std::min(Real{0.0}, v_sep - built * in_contact);
     }
     row.total = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
     if (found >= 0 && friction && !warm_friction_.empty()) {
@@ -193,18 +198,14 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       if (magnitude > limit) friction_impulse *= limit / magnitude;
       friction_total_[k] = friction_impulse;
     }
-  }
-  // Warm start: each constraint begins with the impulse it ended the last substep with (applied
-  // after every target is fixed).
-  for (std::size_t k = 0; k < count; ++k) {
-    const Row& row = rows_[k];
+    // Warm start: each constraint begins with the impulse it ended the last substep with.
     if (row.total == 0.0) continue;
-    const Vec3 impulse = (row.flags & kFriction) ? Vec3(row.total * row.normal + friction_total_[k])
-                                                 : Vec3(row.total * row.normal);
-    v.col(row.a) += inverse_mass[row.a] * impulse;
+    const Vec3 impulse =
+        friction ? Vec3(row.total * row.normal + friction_total_[k]) : Vec3(row.total * row.normal);
+    v.col(row.a) += wa * impulse;
     touch(row.a);
-    if (row.flags & kHasB) {
-      v.col(row.b) -= inverse_mass[row.b] * impulse;
+    if (b) {
+      v.col(row.b) -= wb * impulse;
       touch(row.b);
     }
   }

@@ -109,8 +109,9 @@ class ContactResolver {
   const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
 
   std::vector<Row> rows_;
-  std::vector<Real> acceleration_norm_;  // per particle
-  std::vector<Real> penetration_;        // per row: the contact's overlap (links: length error)
+  ScalarArray acceleration_norm_;  // per particle
+  Vec3Array initial_velocity_;     // per particle, before the warm starts
+  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // The warm starts are per row of the last substep, in the order of its contacts (so a settled
