@@ -44,11 +44,15 @@ class ContactSink {
   ContactSink(std::vector<Contact>& contacts, const std::size_t limit, std::size_t& dropped)
       : contacts_(contacts), limit_(limit), dropped_(dropped) {}
   void push(const Contact& contact) {
+    if (Contact* slot = add()) *slot = contact;
+  }
+  // A new contact to fill in place, or nullptr when it is dropped.
+  Contact* add() {
     if (limit_ != 0 && contacts_.size() >= limit_) {
       ++dropped_;
-      return;
+      return nullptr;
     }
-    contacts_.push_back(contact);
+    return &contacts_.emplace_back();
   }
 
  private:
@@ -57,16 +61,16 @@ class ContactSink {
   std::size_t& dropped_;
 };
 
-Contact colliderContact(const std::uint32_t i, const std::uint32_t slot, const ColliderId collider,
-                        const ShapeContact& shape, const Material& material) {
-  Contact c;
-  c.a = i;
-  c.key = colliderContactKey(slot, collider);
-  c.normal = shape.normal;
-  c.penetration = shape.penetration;
-  c.restitution = material.restitution;
-  c.friction = material.friction;
-  return c;
+void colliderContact(Contact* c, const std::uint32_t i, const std::uint32_t slot,
+                     const ColliderId collider, const ShapeContact& shape,
+                     const Material& material) {
+  if (c == nullptr) return;
+  c->a = i;
+  c->key = colliderContactKey(slot, collider);
+  c->normal = shape.normal;
+  c->penetration = shape.penetration;
+  c->restitution = material.restitution;
+  c->friction = material.friction;
 }
 
 // Gaps narrower than this get a contact too (speculative: it only stops them closing faster than
@@ -483,9 +487,9 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
           // Stopped at its time of impact: touching, whatever rounding says.
           const ShapeContact touching{shape ? shape->normal : hit->normal,
                                       shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
-          sink.push(colliderContact(index, particles_.idAt(i).index, id, touching, material));
+          colliderContact(sink.add(), index, particles_.idAt(i).index, id, touching, material);
         } else if (shape) {
-          sink.push(colliderContact(index, particles_.idAt(i).index, id, *shape, material));
+          colliderContact(sink.add(), index, particles_.idAt(i).index, id, *shape, material);
         }
       };
       for (const PlaneCollider& c : colliders_.planes)
@@ -522,22 +526,22 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
         if (!touching) continue;
         penetration = std::max(penetration, Real{0.0});
       }
-      Contact c;
-      c.a = a;
-      c.b = b;
-      c.normal = distance > 1e-12 ? Vec3(d / distance) : Vec3::UnitZ();
-      c.penetration = penetration;
-      c.key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
+      Contact* c = sink.add();
+      if (c == nullptr) continue;
+      c->a = a;
+      c->b = b;
+      c->normal = distance > 1e-12 ? Vec3(d / distance) : Vec3::UnitZ();
+      c->penetration = penetration;
+      c->key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
       if (custom_materials) {
         const Material ma = particleMaterial(a);
         const Material mb = particleMaterial(b);
-        c.restitution = 0.5 * (ma.restitution + mb.restitution);
-        c.friction = std::sqrt(ma.friction * mb.friction);
+        c->restitution = 0.5 * (ma.restitution + mb.restitution);
+        c->friction = std::sqrt(ma.friction * mb.friction);
       } else {
-        c.restitution = settings.particle_restitution;
-        c.friction = settings.particle_friction;
+        c->restitution = settings.particle_restitution;
+        c->friction = settings.particle_friction;
       }
-      sink.push(c);
     }
   }
 
