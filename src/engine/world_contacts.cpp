@@ -127,9 +127,9 @@ void heightBuckets(const ConstVec3Map& x, const ConstScalarMap& radius, const Ve
   }
 }
 
-// The candidate pairs are found for boxes grown by this skin and kept while no particle has moved
-// more than half of it (a quarter of the smallest radius): two spheres that were not candidates
-// were more than the skin apart on some axis, so they cannot touch yet.
+// The candidate pairs are found within this skin (a quarter of the smallest radius) beyond reach
+// and kept while no particle has moved more than half of it: two spheres that were not candidates
+// were more than the skin apart, so they cannot touch yet.
 Real candidateSkin(const Eigen::Ref<const ScalarArray>& radius) {
   const Real smallest = radius.size() > 0 ? radius.minCoeff() : 0.0;
   return std::isfinite(smallest) && smallest > 0.0 ? 0.25 * smallest : 0.0;
@@ -146,9 +146,9 @@ bool candidatesStillValid(const ContactWorkspace& ws, const ParticleStore& parti
       !(ws.candidate_radii.matrix() == radius.matrix())) {
     return false;
   }
-  // Moved at most half the skin along every axis since the pairs were found (NaN: not valid).
-  const Real moved = (x - ws.candidate_positions).cwiseAbs().maxCoeff();
-  return moved <= 0.5 * ws.candidate_skin;
+  // Moved at most half the skin since the pairs were found (NaN: not valid).
+  const Real moved_squared = (x - ws.candidate_positions).colwise().squaredNorm().maxCoeff();
+  return moved_squared <= 0.25 * ws.candidate_skin * ws.candidate_skin;
 }
 
 // Stable counting sort of `items` by `bucket` (one per item, below `buckets`) through `scratch`;
@@ -617,6 +617,17 @@ void World::resolveContacts(const Real h) {
       ws.box_hi.col(i) = hi + r;
     }
     ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
+    if (!swept) {
+      // Only pairs within reach + margin + skin can touch before the list is made again (each
+      // sphere moves at most half the skin): the boxes' corners are left out here, once.
+      const Real extra = contactMargin(settings) + skin;
+      const auto kept = std::remove_if(ws.pairs.begin(), ws.pairs.end(), [&](const IndexPair& p) {
+        const Real bound = radius[p.a] + radius[p.b] + extra;
+        // Kept unless clearly beyond (the slack covers rounding in the squares).
+        return !((x.col(p.a) - x.col(p.b)).squaredNorm() <= bound * bound * (1.0 + 1e-9));
+      });
+      ws.pairs.erase(kept, ws.pairs.end());
+    }
     if (bottom_up && ws.pairs.size() > 1) {
       // Pairs bottom up, so their contacts come out in the order the resolver wants.
       find_buckets();

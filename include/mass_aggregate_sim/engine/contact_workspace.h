@@ -22,9 +22,10 @@ struct ContactWorkspace {
   std::vector<std::uint32_t> particle_bucket;
   std::vector<std::uint32_t> item_bucket;
   std::vector<std::uint32_t> bucket_start;
-  // Candidate pairs, kept between substeps while valid: found for boxes grown by candidate_skin,
-  // they hold while no particle moved more than half of it from candidate_positions and nothing
-  // else they depend on changed (particle layout and radii, broadphase, slop, gravity).
+  // Candidate pairs, kept between substeps while valid: the pairs less than candidate_skin beyond
+  // reach (and margin), they hold while no particle moved more than half of it from
+  // candidate_positions and nothing else they depend on changed (particle layout and radii,
+  // broadphase, slop, gravity).
   std::vector<IndexPair> pairs;
   bool candidates_valid = false;
   Real candidate_skin = 0.0;
