@@ -492,8 +492,15 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
           colliderContact(sink.add(), index, particles_.idAt(i).index, id, *shape, material);
         }
       };
-      for (const PlaneCollider& c : colliders_.planes)
-        add(sphereVsPlane(xi, r, c, margin), c.id, c.material);
+      for (const PlaneCollider& c : colliders_.planes) {
+        // sphereVsPlane() inline: most spheres are far from most planes.
+        const Real penetration = r - (c.normal.dot(xi) - c.offset);
+        if (penetration > -margin) {
+          add(ShapeContact{c.normal, penetration}, c.id, c.material);
+        } else if (hit) {
+          add(std::nullopt, c.id, c.material);
+        }
+      }
       for (const SphereCollider& c : colliders_.spheres) {
         add(sphereVsSphere(xi, r, c.center, c.radius, margin), c.id, c.material);
       }
