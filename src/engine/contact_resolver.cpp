@@ -82,10 +82,8 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
 
   prepare(contacts, x, v, inverse_mass, acceleration, h);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
-  // Velocities are final from here on: the closing speed left is measured while following.
-  stats.max_closing_velocity = followRestingImpulses(x, v, inverse_mass, h);
-  stats.position_iterations =
-      resolvePositions(contacts, x, inverse_mass, settings, stats.max_penetration);
+  followRestingImpulses(x, v, inverse_mass);
+  stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
   stats.iterations = stats.velocity_iterations + stats.position_iterations;
   links_ = nullptr;
 }
@@ -102,6 +100,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
   // Targets are measured on the velocities before any warm start; the warm starts go into v as
   // the rows are made.
   initial_velocity_ = v;
+  if (mixed_stamp_.size() != static_cast<std::size_t>(v.cols()) || ++stamp_ == 0) {
+    mixed_stamp_.assign(static_cast<std::size_t>(v.cols()), 0);
+    stamp_ = 1;
+  }
+  any_mixed_ = false;
   rows_.resize(count);
   penetration_.resize(count);
   friction_coefficient_.resize(count);
@@ -158,6 +161,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
                                           (resting ? kResting : 0) | (friction ? kFriction : 0) |
                                           (c.kind != ContactKind::kRod ? kUnilateral : 0));
     next_warm_key_[k] = c.key;
+    if (active && !(c.kind == ContactKind::kContact && resting)) {
+      // Moves with more than resting contacts' impulses: followed row by row.
+      mixed_stamp_[c.a] = stamp_;
+      if (b) mixed_stamp_[c.b] = stamp_;
+      any_mixed_ = true;
+    }
     any_friction_ = any_friction_ || friction;
 
     row.total = 0.0;
@@ -264,65 +273,50 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
   return passes;
 }
 
-Real ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
-                                            const ConstScalarMap& inverse_mass, const Real h) {
-  const std::size_t count = rows_.size();
+void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
+                                            const ConstScalarMap& inverse_mass) {
   const Real scale = follow_scale_;
-  Real max_closing = 0.0;
-  next_warm_friction_.resize(any_friction_ ? count : 0);
-  for (std::size_t k = 0; k < count; ++k) {
+  if (scale <= 0.0) return;
+  // dx = beta h w J: the move the integrator would have made had the impulses been in the step.
+  // A particle whose active rows are all resting contacts changed velocity by exactly those
+  // impulses: dx = beta h (v - v_initial).
+  for (const std::uint32_t i : touched_) {
+    if (mixed_stamp_[i] == stamp_) continue;
+    const Vec3 move = scale * (v.col(i) - initial_velocity_.col(i));
+    x.col(i) += move;
+    displacement_.col(i) += move;
+  }
+  if (!any_mixed_) return;
+  // The others (also hit, linked or in a gap) follow their resting contacts' impulses one by one.
+  for (std::size_t k = 0; k < rows_.size(); ++k) {
     const Row& row = rows_[k];
-    // Kept for the next substep, in contact order.
-    const bool keep = (row.flags & kActive) && row.total != 0.0;
-    next_warm_normal_[k] = keep ? row.total : 0.0;
-    if (any_friction_) {
-      next_warm_friction_[k] =
-          keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
+    if (!(row.flags & kActive) || row.kind != ContactKind::kContact || !(row.flags & kResting)) {
+      continue;
     }
-    if (!(row.flags & kActive)) continue;
-    const bool b = row.flags & kHasB;
-    Vec3 relative = v.col(row.a);
-    if (b) relative -= v.col(row.b);
-    const Real v_sep = relative.dot(row.normal);
-    // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
-    const Real closing = row.kind == ContactKind::kRod
-                             ? std::abs(v_sep)
-                             : std::min(Real{0.0}, penetration_[k] / h) - v_sep;
-    max_closing = std::max(max_closing, closing);
-    if (scale <= 0.0 || row.kind != ContactKind::kContact || !(row.flags & kResting)) continue;
     const Vec3 impulse = (row.flags & kFriction) ? Vec3(row.total * row.normal + friction_total_[k])
                                                  : Vec3(row.total * row.normal);
-    if (impulse.isZero(0.0)) continue;
-    // dx = beta h w J: the move the integrator would have made had the impulse been in the step.
-    const Real wa = inverse_mass[row.a];
-    if (wa > 0.0) {
-      const Vec3 move_a = (scale * wa) * impulse;
+    if (mixed_stamp_[row.a] == stamp_) {
+      const Vec3 move_a = (scale * inverse_mass[row.a]) * impulse;
       x.col(row.a) += move_a;
       displacement_.col(row.a) += move_a;
-      touch(row.a);
     }
-    if (b) {
-      const Real wb = inverse_mass[row.b];
-      if (wb > 0.0) {
-        const Vec3 move_b = (-scale * wb) * impulse;
-        x.col(row.b) += move_b;
-        displacement_.col(row.b) += move_b;
-        touch(row.b);
-      }
+    if ((row.flags & kHasB) && mixed_stamp_[row.b] == stamp_) {
+      const Vec3 move_b = (-scale * inverse_mass[row.b]) * impulse;
+      x.col(row.b) += move_b;
+      displacement_.col(row.b) += move_b;
     }
   }
-  warm_key_.swap(next_warm_key_);
-  warm_normal_.swap(next_warm_normal_);
-  warm_friction_.swap(next_warm_friction_);
-  warm_by_key_.clear();
-  return max_closing;
 }
 
 int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
-                                      const ConstScalarMap& inverse_mass,
-                                      const CollisionSettings& settings, Real& max_penetration) {
+                                      const Vec3Map& v, const ConstScalarMap& inverse_mass,
+                                      const Real h, const CollisionSettings& settings,
+                                      ContactStats& stats) {
   const std::size_t count = rows_.size();
   const Real slop = settings.penetration_slop;
+  Real& max_penetration = stats.max_penetration;
+  Real max_closing = 0.0;
+  next_warm_friction_.resize(any_friction_ ? count : 0);
   int passes = 0;
   bool corrected = true;
   while (corrected && passes < settings.max_iterations) {
@@ -333,9 +327,29 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
       const Row& row = rows_[k];
+      const bool b = row.flags & kHasB;
+      if (passes == 1) {
+        // Velocities and impulses are final: keep the impulses for the next substep (in contact
+        // order) and measure the closing speed left.
+        const bool keep = (row.flags & kActive) && row.total != 0.0;
+        next_warm_normal_[k] = keep ? row.total : 0.0;
+        if (any_friction_) {
+          next_warm_friction_[k] =
+              keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
+        }
+        if (row.flags & kActive) {
+          Vec3 relative = v.col(row.a);
+          if (b) relative -= v.col(row.b);
+          const Real v_sep = relative.dot(row.normal);
+          // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
+          const Real closing = row.kind == ContactKind::kRod
+                                   ? std::abs(v_sep)
+                                   : std::min(Real{0.0}, penetration_[k] / h) - v_sep;
+          max_closing = std::max(max_closing, closing);
+        }
+      }
       const Real w_sum = row.inverse_mass_sum;
       if (w_sum <= 0.0) continue;
-      const bool b = row.flags & kHasB;
       Vec3 normal = row.normal;
       Real correction = 0.0;
       if (row.kind == ContactKind::kContact) {
@@ -372,6 +386,11 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
       corrected = true;
     }
   }
+  stats.max_closing_velocity = max_closing;
+  warm_key_.swap(next_warm_key_);
+  warm_normal_.swap(next_warm_normal_);
+  warm_friction_.swap(next_warm_friction_);
+  warm_by_key_.clear();
   if (corrected) {
     // Stopped by max_iterations: measure what the last corrections left.
     max_penetration = 0.0;

@@ -95,14 +95,14 @@ class ContactResolver {
                Real h);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
-  // Keeps the impulses for the next substep and moves resting contacts' particles with theirs;
-  // returns the largest closing speed left.
-  Real followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass,
-                             Real h);
+  // Moves each particle with its resting contacts' impulses (see resolve()).
+  void followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass);
   void indexWarmByKey() const;
-  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
-                       const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
-                       Real& max_penetration);
+  // Also, in its first pass, keeps the impulses for the next substep and measures the closing
+  // speed left (velocities are final by then).
+  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, const Vec3Map& v,
+                       const ConstScalarMap& inverse_mass, Real h,
+                       const CollisionSettings& settings, ContactStats& stats);
   // For a link: current normal (from a towards b) and length error; false when degenerate.
   bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
 
@@ -111,6 +111,10 @@ class ContactResolver {
   std::vector<Row> rows_;
   ScalarArray acceleration_norm_;  // per particle
   Vec3Array initial_velocity_;     // per particle, before the warm starts
+  // Per particle: == stamp_ when one of its active rows is not a resting contact.
+  std::vector<std::uint32_t> mixed_stamp_;
+  std::uint32_t stamp_ = 0;
+  bool any_mixed_ = false;
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
