@@ -93,10 +93,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
   const std::size_t count = contacts.size();
   // |a| of every particle in one vectorised loop, not twice per contact in the dependent one.
-  acceleration_norm_ = (acceleration.row(0).array().square() +
-                        acceleration.row(1).array().square() + acceleration.row(2).array().square())
-                           .sqrt()
-                           .transpose();
+  acceleration_norm_.resize(acceleration.cols());
+  for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
+    acceleration_norm_[i] = acceleration.col(i).squaredNorm();
+  }
+  acceleration_norm_ = acceleration_norm_.array().sqrt();  // contiguous: packet square roots
   // Targets are measured on the velocities before any warm start; the warm starts go into v as
   // the rows are made.
   initial_velocity_ = v;

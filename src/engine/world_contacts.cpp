@@ -537,7 +537,7 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       if (c == nullptr) continue;
       c->a = a;
       c->b = b;
-      c->normal = distance > 1e-12 ? Vec3(d / distance) : Vec3::UnitZ();
+      c->normal = distance > 1e-12 ? Vec3(d * (1.0 / distance)) : Vec3::UnitZ();
       c->penetration = penetration;
       c->key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
       if (custom_materials) {

@@ -22,7 +22,7 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr std::uint64_t kGoldenHash = 0xeb40e66d453801ffull;
+constexpr std::uint64_t kGoldenHash = 0x85b9c52f750e17b4ull;
 constexpr int kGoldenSteps = 600;
 
 // A hanging spring chain, a falling 3 x 3 x 2 block of grains and a ground plane: springs,
