@@ -635,15 +635,26 @@ void World::resolveContacts(const Real h) {
       });
       ws.pairs.erase(kept, ws.pairs.end());
     }
-    if (bottom_up && ws.pairs.size() > 1) {
-      // Pairs bottom up, so their contacts come out in the order the resolver wants.
-      find_buckets();
-      ws.item_bucket.resize(ws.pairs.size());
-      for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
-        ws.item_bucket[k] =
-            std::min(ws.particle_bucket[ws.pairs[k].a], ws.particle_bucket[ws.pairs[k].b]);
+    if (ws.pairs.size() > 1) {
+      // Pairs in the order (height bucket, a, b), by three stable counting sorts from the last
+      // key: bottom up for the resolver, in memory order within a layer, and the same whichever
+      // broadphase found them.
+      const auto sort_by = [&](const auto key, const std::uint32_t key_count) {
+        ws.item_bucket.resize(ws.pairs.size());
+        for (std::size_t k = 0; k < ws.pairs.size(); ++k) ws.item_bucket[k] = key(ws.pairs[k]);
+        sortByBucket(ws.pairs, ws.item_bucket, key_count, ws.bucket_start, ws.sorted_pairs);
+      };
+      const auto particle_count = static_cast<std::uint32_t>(n);
+      sort_by([](const IndexPair& p) { return p.b; }, particle_count);
+      sort_by([](const IndexPair& p) { return p.a; }, particle_count);
+      if (bottom_up) {
+        find_buckets();
+        sort_by(
+            [&](const IndexPair& p) {
+              return std::min(ws.particle_bucket[p.a], ws.particle_bucket[p.b]);
+            },
+            buckets);
       }
-      sortByBucket(ws.pairs, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_pairs);
     }
     ws.candidates_valid = !swept;
     if (ws.candidates_valid) {
