@@ -13,12 +13,6 @@ bool hasB(const Contact& c) { return c.b != kNoParticle; }
 
 }  // namespace
 
-void ContactResolver::touch(const std::uint32_t i) {
-  if (touched_flag_[i]) return;
-  touched_flag_[i] = 1;
-  touched_.push_back(i);
-}
-
 bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal,
                                 Real& error) const {
   const LinkGeometry& link = (*links_)[c.link];
@@ -176,7 +170,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       friction_coefficient_[k] = c.friction;
       friction_total_[k].setZero();
     }
-    const std::ptrdiff_t found = findWarm(c.key, cursor);
+    // Inline the usual case: the entry at the cursor.
+    const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
+                                     ? static_cast<std::ptrdiff_t>(cursor++)
+                                     : findWarm(c.key, cursor);
     if (!active) continue;
     const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the

@@ -487,9 +487,9 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
           // Stopped at its time of impact: touching, whatever rounding says.
           const ShapeContact touching{shape ? shape->normal : hit->normal,
                                       shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
-          colliderContact(sink.add(), index, particles_.idAt(i).index, id, touching, material);
+          colliderContact(sink.add(), index, ws.slots[i], id, touching, material);
         } else if (shape) {
-          colliderContact(sink.add(), index, particles_.idAt(i).index, id, *shape, material);
+          colliderContact(sink.add(), index, ws.slots[i], id, *shape, material);
         }
       };
       for (const PlaneCollider& c : colliders_.planes) {
@@ -539,7 +539,7 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       c->b = b;
       c->normal = distance > 1e-12 ? Vec3(d * (1.0 / distance)) : Vec3::UnitZ();
       c->penetration = penetration;
-      c->key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
+      c->key = pairContactKey(ws.slots[a], ws.slots[b]);
       if (custom_materials) {
         const Material ma = particleMaterial(a);
         const Material mb = particleMaterial(b);
@@ -676,6 +676,12 @@ void World::resolveContacts(const Real h) {
     ws.pair_is_swept.clear();
   }
 
+  if (ws.slots_layout != particles_.layoutVersion() || ws.slots.size() != n) {
+    // Each particle's slot, for the contact keys; it changes only with the layout.
+    ws.slots.resize(n);
+    for (std::size_t i = 0; i < n; ++i) ws.slots[i] = particles_.idAt(i).index;
+    ws.slots_layout = particles_.layoutVersion();
+  }
   ws.contacts.clear();
   ws.links.clear();
   generateContacts(ws, dropped_this_step_);

@@ -87,7 +87,11 @@ class ContactResolver {
     Real target;            // target separating velocity
   };
 
-  void touch(std::uint32_t i);
+  void touch(const std::uint32_t i) {
+    if (touched_flag_[i]) return;
+    touched_flag_[i] = 1;
+    touched_.push_back(i);
+  }
   // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
   void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,

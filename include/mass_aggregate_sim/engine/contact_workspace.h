@@ -16,7 +16,9 @@ namespace engine {
 // Buffers the contact phase of World keeps between substeps (never part of the world's state).
 struct ContactWorkspace {
   std::vector<Contact> contacts;
-  std::vector<LinkGeometry> links;  // of the link contacts, by Contact::link
+  std::vector<LinkGeometry> links;   // of the link contacts, by Contact::link
+  std::vector<std::uint32_t> slots;  // per particle: its id's slot, for the contact keys
+  std::uint64_t slots_layout = ~std::uint64_t{0};  // ParticleStore::layoutVersion() of slots
   std::vector<Contact> sorted_contacts;
   // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.
   std::vector<std::uint32_t> particle_bucket;
