@@ -20,12 +20,14 @@ namespace engine {
 // impulse j = (v_target - v_sep) / (w_a + w_b), shared by inverse mass w. The target is
 // -e v_impact, where v_impact is v_sep less what the forces (of lastAccelerations) built up along
 // n while the particles were already in contact during the substep. A contact whose closing speed,
-// less all the forces built over the substep, is below two more substeps of it is resting and gets
-// v_target = 0, which keeps resting contacts still without bouncing. Friction then removes
-// tangential velocity, bounded by mu j. Rods are bilateral (target 0, either sign); cables pull
-// only and reflect with their restitution. Links keep their total impulse (clamped to pulling for
-// cables) and start the next substep from it (warm starting), so a loaded structure does not
-// rebuild its tensions from zero every substep.
+// less all the forces built over the substep, is below two more substeps of it is resting and
+// aims at touching (v_target = 0 when overlapping), which keeps resting contacts still without
+// bouncing. Friction then removes tangential velocity, bounded by mu j. Rods are bilateral
+// (target 0, either sign); cables pull only and reflect with their restitution. Every constraint
+// keeps its total normal and friction impulse and starts the next substep from it (warm
+// starting), so a pile or a loaded structure does not rebuild its support from zero every substep.
+//
+// Then resting contacts move their particles with their impulses (see resolve()).
 //
 // Position pass, per contact: overlap beyond the slop is removed down to half the slop, moving a
 // and b by w_a/(w_a+w_b) and w_b/(w_a+w_b) of it (dp_a = m_b/(m_a+m_b) d n). Links are recomputed
@@ -122,11 +124,10 @@ class ContactResolver {
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
-  // The warm starts are per row of the last substep, in the order of its contacts (so a settled
-  // scene finds each at the cursor), with (key, index) sorted by key for the others, built when
-  // needed.
-  // What each contact ended the last substep with: key, normal impulse and friction impulse
-  // (world frame; empty when no contact had friction).
+  // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
+  // friction impulse in the world frame; no friction entries when no contact had friction), in
+  // that substep's contact order, so a settled scene finds each at the cursor; warm_by_key_
+  // (key, index) sorted by key for the others, built when needed.
   std::vector<std::uint64_t> warm_key_;
   std::vector<Real> warm_normal_;
   std::vector<Vec3> warm_friction_;
