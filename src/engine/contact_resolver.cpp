@@ -13,61 +13,116 @@ bool hasB(const Contact& c) { return c.b != kNoParticle; }
 
 }  // namespace
 
-void ContactResolver::touch(const std::uint32_t i) {
-  if (touched_flag_[i]) return;
-  touched_flag_[i] = 1;
-  touched_.push_back(i);
-}
-
 bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal,
                                 Real& error) const {
-  const Vec3 other = hasB(c) ? Vec3(x.col(c.b)) : c.anchor;
+  const LinkGeometry& link = (*links_)[c.link];
+  const Vec3 other = hasB(c) ? Vec3(x.col(c.b)) : link.anchor;
   const Vec3 d = other - x.col(c.a);
   const Real length = d.norm();
   if (length < kMinLinkLength) return false;
   normal = d / length;
-  error = length - c.length;
+  error = length - link.length;
   return true;
 }
 
-Real ContactResolver::lastImpulse(const std::uint64_t key) const {
-  const auto it = std::lower_bound(warm_impulses_.begin(), warm_impulses_.end(), key,
-                                   [](const std::pair<std::uint64_t, Real>& entry,
-                                      const std::uint64_t k) { return entry.first < k; });
-  return it != warm_impulses_.end() && it->first == key ? it->second : 0.0;
+void ContactResolver::indexWarmByKey() const {
+  if (warm_by_key_.size() == warm_key_.size()) return;
+  warm_by_key_.clear();
+  for (std::size_t k = 0; k < warm_key_.size(); ++k) {
+    warm_by_key_.emplace_back(warm_key_[k], static_cast<std::uint32_t>(k));
+  }
+  std::sort(warm_by_key_.begin(), warm_by_key_.end());
 }
 
-void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
+Real ContactResolver::lastImpulse(const std::uint64_t key) const {
+  indexWarmByKey();
+  const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
+                                   std::pair<std::uint64_t, std::uint32_t>{key, 0});
+  return it != warm_by_key_.end() && it->first == key ? warm_normal_[it->second] : 0.0;
+}
+
+std::ptrdiff_t ContactResolver::findWarm(const std::uint64_t key, std::size_t& cursor) {
+  // A settled scene lists its contacts in the same order every substep: the entry is at the
+  // cursor. Else a binary search by key, after which the cursor follows from there.
+  if (cursor < warm_key_.size() && warm_key_[cursor] == key)
+    return static_cast<std::ptrdiff_t>(cursor++);
+  indexWarmByKey();
+  const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
+                                   std::pair<std::uint64_t, std::uint32_t>{key, 0});
+  if (it == warm_by_key_.end() || it->first != key) return -1;
+  cursor = it->second + std::size_t{1};
+  return it->second;
+}
+
+void ContactResolver::resolve(std::vector<Contact>& contacts,
+                              const std::vector<LinkGeometry>& links, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
-                              const CollisionSettings& settings, ContactStats& stats) {
+                              const CollisionSettings& settings, const Real position_weight,
+                              ContactStats& stats) {
   for (const std::uint32_t i : touched_) {
     touched_flag_[i] = 0;
     displacement_.col(i).setZero();
   }
   touched_.clear();
   last_substep_ = h;
+  links_ = &links;
+  follow_scale_ = h * position_weight;
   const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
     displacement_.setZero(3, n);
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
 
+  prepare(contacts, x, v, inverse_mass, acceleration, h);
+  stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
+  followRestingImpulses(x, v, inverse_mass);
+  stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
+  stats.iterations = stats.velocity_iterations + stats.position_iterations;
+  links_ = nullptr;
+}
+
+void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+                              const ConstScalarMap& inverse_mass,
+                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
   const std::size_t count = contacts.size();
-  inverse_mass_sum_.resize(count);
-  built_velocity_.resize(count);
-  resting_.resize(count);
-  velocity_active_.resize(count);
+  // |a| of every particle in one vectorised loop, not twice per contact in the dependent one.
+  acceleration_norm_.resize(acceleration.cols());
+  for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
+    acceleration_norm_[i] = acceleration.col(i).squaredNorm();
+  }
+  acceleration_norm_ = acceleration_norm_.array().sqrt();  // contiguous: packet square roots
+  // Targets are measured on the velocities before any warm start; the warm starts go into v as
+  // the rows are made.
+  initial_velocity_ = v;
+  if (mixed_stamp_.size() != static_cast<std::size_t>(v.cols()) || ++stamp_ == 0) {
+    mixed_stamp_.assign(static_cast<std::size_t>(v.cols()), 0);
+    stamp_ = 1;
+  }
+  any_mixed_ = false;
+  rows_.resize(count);
+  penetration_.resize(count);
+  friction_coefficient_.resize(count);
+  friction_total_.resize(count);
+  next_warm_key_.resize(count);
+  next_warm_normal_.resize(count);
+  any_friction_ = false;
+  std::size_t cursor = 0;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];
+    Row& row = rows_[k];
+    const bool b = hasB(c);
+    row.a = c.a;
+    row.b = b ? c.b : c.a;
+    row.kind = c.kind;
     const Real wa = inverse_mass[c.a];
-    const Real wb = hasB(c) ? inverse_mass[c.b] : 0.0;
-    inverse_mass_sum_[k] = wa + wb;
+    const Real wb = b ? inverse_mass[c.b] : 0.0;
+    Real w_sum = wa + wb;
     Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
-    Real acceleration_bound = wa > 0.0 ? relative_acceleration.norm() : 0.0;
-    if (hasB(c) && wb > 0.0) {
+    Real acceleration_bound = wa > 0.0 ? acceleration_norm_[c.a] : 0.0;
+    if (b && wb > 0.0) {
       relative_acceleration -= acceleration.col(c.b);
-      acceleration_bound += acceleration.col(c.b).norm();
+      acceleration_bound += acceleration_norm_[c.b];
     }
     if (c.kind != ContactKind::kContact) {
       Vec3 normal;
@@ -76,116 +131,96 @@ void ContactResolver::resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map
         c.normal = normal;
         c.penetration = error;
       } else {
-        inverse_mass_sum_[k] = 0.0;  // coincident ends: no direction to act along
+        w_sum = 0.0;  // coincident ends: no direction to act along
       }
     }
-    // Closing velocity the forces built over the substep, counted only for the fraction of it the
-    // contact already existed: the overlap d, reached at closing speed |v_sep|, took d / |v_sep|.
-    const Real v_sep =
-        (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
+    row.normal = c.normal;
+    row.inverse_mass_sum = w_sum;
+    penetration_[k] = c.penetration;
+    Vec3 relative_velocity = initial_velocity_.col(c.a);
+    if (b) relative_velocity -= initial_velocity_.col(c.b);
+    const Real v_sep = relative_velocity.dot(c.normal);
     const Real built = std::min(Real{0.0}, relative_acceleration.dot(c.normal) * h);
-    Real in_contact = 1.0;
-    if (v_sep < 0.0) in_contact = std::clamp(c.penetration / (-v_sep * h), Real{0.0}, Real{1.0});
-    built_velocity_[k] = built * in_contact;
     // Resting: what is left of the closing speed after removing all the forces built over the
     // substep is below what they can build in two more (explicit Euler moves with the velocity of
     // the step before, so one substep of slack is not enough). Then the target is 0, no bounce.
-    resting_[k] = v_sep - built > -2.0 * acceleration_bound * h;
+    const bool resting = v_sep - built > -2.0 * acceleration_bound * h;
     // A gap (a contact not yet touching, a cable not yet taut) matters only for slow approaches:
     // it then keeps them from closing faster than the gap allows, so a resting contact or a loaded
     // cable that flickers open does not fall free for a substep and come back with a jolt. A fast
     // approach is let through, to bounce properly in the next substep.
-    velocity_active_[k] = inverse_mass_sum_[k] > 0.0 &&
-                          !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting_[k]);
-  }
-
-  stats.velocity_iterations = resolveVelocities(contacts, v, inverse_mass, h, settings);
-  stats.position_iterations = resolvePositions(contacts, x, inverse_mass, settings);
-  stats.iterations = stats.velocity_iterations + stats.position_iterations;
-
-  // What is left: the largest overlap beyond zero and the largest closing speed.
-  stats.max_penetration = 0.0;
-  stats.max_closing_velocity = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Contact& c = contacts[k];
-    if (inverse_mass_sum_[k] <= 0.0) continue;
-    Real violation = 0.0;
-    Vec3 normal = c.normal;
-    if (c.kind == ContactKind::kContact) {
-      violation = c.penetration - (Vec3(displacement_.col(c.a)) -
-                                   (hasB(c) ? Vec3(displacement_.col(c.b)) : Vec3::Zero()))
-                                      .dot(c.normal);
-    } else {
-      Real error;
-      if (!linkState(c, x, normal, error)) continue;
-      violation = c.kind == ContactKind::kRod ? std::abs(error) : error;
+    const bool active =
+        w_sum > 0.0 && !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting);
+    const bool friction = c.kind == ContactKind::kContact && c.friction > 0.0;
+    row.flags = static_cast<std::uint8_t>((b ? kHasB : 0) | (active ? kActive : 0) |
+                                          (resting ? kResting : 0) | (friction ? kFriction : 0) |
+                                          (c.kind != ContactKind::kRod ? kUnilateral : 0));
+    next_warm_key_[k] = c.key;
+    if (active && !(c.kind == ContactKind::kContact && resting)) {
+      // Moves with more than resting contacts' impulses: followed row by row.
+      mixed_stamp_[c.a] = stamp_;
+      if (b) mixed_stamp_[c.b] = stamp_;
+      any_mixed_ = true;
     }
-    stats.max_penetration = std::max(stats.max_penetration, violation);
-    if (!velocity_active_[k]) continue;
-    const Real v_sep =
-        (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
-    // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
-    const Real allowed = c.kind != ContactKind::kRod ? std::min(Real{0.0}, c.penetration / h) : 0.0;
-    const Real closing = c.kind == ContactKind::kRod ? std::abs(v_sep) : allowed - v_sep;
-    stats.max_closing_velocity = std::max(stats.max_closing_velocity, closing);
-  }
-}
+    any_friction_ = any_friction_ || friction;
 
-int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
-                                       const ConstScalarMap& inverse_mass, const Real h,
-                                       const CollisionSettings& settings) {
-  const std::size_t count = contacts.size();
-  total_.assign(count, 0.0);
-  target_.assign(count, 0.0);
-  const auto separating = [&](const Contact& c) {
-    return (Vec3(v.col(c.a)) - (hasB(c) ? Vec3(v.col(c.b)) : Vec3::Zero())).dot(c.normal);
-  };
-  // Contacts mostly come in the order of their keys, so each lookup starts where the last one
-  // ended: everything before `hint` is below the last key, hence below any key not smaller.
-  const auto key_below = [](const std::pair<std::uint64_t, Real>& entry, const std::uint64_t key) {
-    return entry.first < key;
-  };
-  auto hint = warm_impulses_.begin();
-  std::uint64_t hint_key = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Contact& c = contacts[k];
-    if (!velocity_active_[k]) continue;
-    if (c.key < hint_key) hint = warm_impulses_.begin();
-    auto it = hint;
-    for (int probe = 0; probe < 4 && it != warm_impulses_.end() && it->first < c.key; ++probe) {
-      ++it;
+    row.total = 0.0;
+    row.target = 0.0;
+    if (friction) {
+      friction_coefficient_[k] = c.friction;
+      friction_total_[k].setZero();
     }
-    if (it != warm_impulses_.end() && it->first < c.key) {
-      it = std::lower_bound(it, warm_impulses_.end(), c.key, key_below);
-    }
-    hint = it;
-    hint_key = c.key;
-    const Real previous = (it != warm_impulses_.end() && it->first == c.key) ? it->second : 0.0;
+    // Inline the usual case: the entry at the cursor.
+    const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
+                                     ? static_cast<std::ptrdiff_t>(cursor++)
+                                     : findWarm(c.key, cursor);
+    if (!active) continue;
+    const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
     // passes converge, so a bounce must not be re-evaluated from a half-solved state). A contact
     // or cable that already pushed or pulled in the last substep is holding, not hitting.
-    if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
+    if (c.kind == ContactKind::kContact && resting && follow_scale_ > 0.0) {
+      // A resting contact moves by beta h (v''_sep - v'_sep) after this phase, which leaves the
+      // overlap p - beta h (v''_sep - v'_sep): aim at touching when that is within reach, never
+      // at pushing apart (overlap beyond the slop is the position passes' work).
+      row.target = std::min(Real{0.0}, v_sep + c.penetration / follow_scale_);
+    } else if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
       // A gap g may close at up to g / h within the substep, no faster.
-      target_[k] = c.penetration / h;
-    } else if (c.kind != ContactKind::kRod && !resting_[k] && previous <= 0.0) {
-      target_[k] = -c.restitution * std::min(Real{0.0}, separating(c) - built_velocity_[k]);
+      row.target = c.penetration / h;
+    } else if (c.kind != ContactKind::kRod && !resting && previous <= 0.0) {
+      // Closing velocity the forces built over the substep, counted only for the fraction of it
+      // the contact already existed: the overlap d, reached at closing speed |v_sep|, took
+      // d / |v_sep|.
+      Real in_contact = 1.0;
+      if (v_sep < 0.0) in_contact = std::clamp(c.penetration / (-v_sep * h), Real{0.0}, Real{1.0});
+      row.target = -c.restitution * std::min(Real{0.0}, v_sep - built * in_contact);
     }
-    total_[k] = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
-  }
-  // Warm start: each constraint begins with the impulse it ended the last substep with.
-  for (std::size_t k = 0; k < count; ++k) {
-    const Real j = total_[k];
-    if (j == 0.0) continue;
-    const Contact& c = contacts[k];
-    v.col(c.a) += (j * inverse_mass[c.a]) * c.normal;
-    touch(c.a);
-    if (hasB(c)) {
-      v.col(c.b) -= (j * inverse_mass[c.b]) * c.normal;
-      touch(c.b);
+    row.total = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
+    if (found >= 0 && friction && !warm_friction_.empty()) {
+      // The last friction impulse, in the current tangent plane and within mu j_n.
+      const Vec3& last = warm_friction_[found];
+      Vec3 friction_impulse = last - last.dot(c.normal) * c.normal;
+      const Real limit = c.friction * row.total;
+      const Real magnitude = friction_impulse.norm();
+      if (magnitude > limit) friction_impulse *= limit / magnitude;
+      friction_total_[k] = friction_impulse;
+    }
+    // Warm start: each constraint begins with the impulse it ended the last substep with.
+    if (row.total == 0.0) continue;
+    const Vec3 impulse =
+        friction ? Vec3(row.total * row.normal + friction_total_[k]) : Vec3(row.total * row.normal);
+    v.col(row.a) += wa * impulse;
+    touch(row.a);
+    if (b) {
+      v.col(row.b) -= wb * impulse;
+      touch(row.b);
     }
   }
-  friction_total_.assign(count, Vec3::Zero());
+}
 
+int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
+                                       const CollisionSettings& settings) {
+  const std::size_t count = rows_.size();
   int passes = 0;
   while (passes < settings.max_iterations) {
     ++passes;
@@ -194,102 +229,184 @@ int ContactResolver::resolveVelocities(std::vector<Contact>& contacts, Vec3Map& 
     const bool backward = passes % 2 == 0;
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
-      if (!velocity_active_[k]) continue;
-      const Real w_sum = inverse_mass_sum_[k];
-      const Contact& c = contacts[k];
-      const bool b = hasB(c);
-      const Real wa = inverse_mass[c.a];
-      const Real wb = b ? inverse_mass[c.b] : 0.0;
+      Row& row = rows_[k];
+      if (!(row.flags & kActive)) continue;
+      const bool b = row.flags & kHasB;
+      const Real w_sum = row.inverse_mass_sum;
+      const Real wa = inverse_mass[row.a];
+      const Real wb = b ? inverse_mass[row.b] : 0.0;
+      Vec3 relative = v.col(row.a);
+      if (b) relative -= v.col(row.b);
       // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
       // together / push apart in total, rods act either way.
-      Real total = total_[k] + (target_[k] - separating(c)) / w_sum;
-      if (c.kind != ContactKind::kRod) total = std::max(Real{0.0}, total);
-      const Real j = total - total_[k];
-      total_[k] = total;
+      Real total = row.total + (row.target - relative.dot(row.normal)) / w_sum;
+      if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
+      const Real j = total - row.total;
+      row.total = total;
       if (j != 0.0) {
-        v.col(c.a) += (j * wa) * c.normal;
-        if (b) v.col(c.b) -= (j * wb) * c.normal;
-        if (wa > 0.0) touch(c.a);
-        if (b && wb > 0.0) touch(c.b);
+        v.col(row.a) += (j * wa) * row.normal;
+        if (b) v.col(row.b) -= (j * wb) * row.normal;
+        if (wa > 0.0) touch(row.a);
+        if (b && wb > 0.0) touch(row.b);
         largest_change = std::max(largest_change, std::abs(j * w_sum));
       }
-      if (c.kind == ContactKind::kContact && c.friction > 0.0) {
+      if (row.flags & kFriction) {
         // Coulomb: the total tangential impulse removes slip but stays within mu j_n.
-        const Vec3 relative = Vec3(v.col(c.a)) - (b ? Vec3(v.col(c.b)) : Vec3::Zero());
-        const Vec3 slip = relative - relative.dot(c.normal) * c.normal;
+        Vec3 slip = v.col(row.a);
+        if (b) slip -= v.col(row.b);
+        slip -= slip.dot(row.normal) * row.normal;
         Vec3 friction = friction_total_[k] - slip / w_sum;
-        const Real limit = c.friction * total_[k];
+        const Real limit = friction_coefficient_[k] * row.total;
         const Real magnitude = friction.norm();
         if (magnitude > limit) friction *= limit / magnitude;
         const Vec3 change = friction - friction_total_[k];
         friction_total_[k] = friction;
-        v.col(c.a) += wa * change;
-        if (b) v.col(c.b) -= wb * change;
+        v.col(row.a) += wa * change;
+        if (b) v.col(row.b) -= wb * change;
         largest_change = std::max(largest_change, change.norm() * w_sum);
       }
     }
     if (largest_change <= settings.velocity_tolerance) break;
   }
-  next_warm_impulses_.clear();
-  for (std::size_t k = 0; k < count; ++k) {
-    if (velocity_active_[k] && total_[k] != 0.0) {
-      next_warm_impulses_.emplace_back(contacts[k].key, total_[k]);
-    }
-  }
-  if (!std::is_sorted(next_warm_impulses_.begin(), next_warm_impulses_.end())) {
-    std::sort(next_warm_impulses_.begin(), next_warm_impulses_.end());
-  }
-  warm_impulses_.swap(next_warm_impulses_);
   return passes;
 }
 
-int ContactResolver::resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
-                                      const ConstScalarMap& inverse_mass,
-                                      const CollisionSettings& settings) {
-  const std::size_t count = contacts.size();
+void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
+                                            const ConstScalarMap& inverse_mass) {
+  const Real scale = follow_scale_;
+  if (scale <= 0.0) return;
+  // dx = beta h w J: the move the integrator would have made had the impulses been in the step.
+  // A particle whose active rows are all resting contacts changed velocity by exactly those
+  // impulses: dx = beta h (v - v_initial).
+  for (const std::uint32_t i : touched_) {
+    if (mixed_stamp_[i] == stamp_) continue;
+    const Vec3 move = scale * (v.col(i) - initial_velocity_.col(i));
+    x.col(i) += move;
+    displacement_.col(i) += move;
+  }
+  if (!any_mixed_) return;
+  // The others (also hit, linked or in a gap) follow their resting contacts' impulses one by one.
+  for (std::size_t k = 0; k < rows_.size(); ++k) {
+    const Row& row = rows_[k];
+    if (!(row.flags & kActive) || row.kind != ContactKind::kContact || !(row.flags & kResting)) {
+      continue;
+    }
+    const Vec3 impulse = (row.flags & kFriction) ? Vec3(row.total * row.normal + friction_total_[k])
+                                                 : Vec3(row.total * row.normal);
+    if (mixed_stamp_[row.a] == stamp_) {
+      const Vec3 move_a = (scale * inverse_mass[row.a]) * impulse;
+      x.col(row.a) += move_a;
+      displacement_.col(row.a) += move_a;
+    }
+    if ((row.flags & kHasB) && mixed_stamp_[row.b] == stamp_) {
+      const Vec3 move_b = (-scale * inverse_mass[row.b]) * impulse;
+      x.col(row.b) += move_b;
+      displacement_.col(row.b) += move_b;
+    }
+  }
+}
+
+int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
+                                      const Vec3Map& v, const ConstScalarMap& inverse_mass,
+                                      const Real h, const CollisionSettings& settings,
+                                      ContactStats& stats) {
+  const std::size_t count = rows_.size();
   const Real slop = settings.penetration_slop;
+  Real& max_penetration = stats.max_penetration;
+  Real max_closing = 0.0;
+  next_warm_friction_.resize(any_friction_ ? count : 0);
   int passes = 0;
-  while (passes < settings.max_iterations) {
+  bool corrected = true;
+  while (corrected && passes < settings.max_iterations) {
     ++passes;
-    bool corrected = false;
+    corrected = false;
+    max_penetration = 0.0;
     const bool backward = passes % 2 == 0;
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
-      const Real w_sum = inverse_mass_sum_[k];
+      const Row& row = rows_[k];
+      const bool b = row.flags & kHasB;
+      if (passes == 1) {
+        // Velocities and impulses are final: keep the impulses for the next substep (in contact
+        // order) and measure the closing speed left.
+        const bool keep = (row.flags & kActive) && row.total != 0.0;
+        next_warm_normal_[k] = keep ? row.total : 0.0;
+        if (any_friction_) {
+          next_warm_friction_[k] =
+              keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
+        }
+        if (row.flags & kActive) {
+          Vec3 relative = v.col(row.a);
+          if (b) relative -= v.col(row.b);
+          const Real v_sep = relative.dot(row.normal);
+          // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
+          const Real closing = row.kind == ContactKind::kRod
+                                   ? std::abs(v_sep)
+                                   : std::min(Real{0.0}, penetration_[k] / h) - v_sep;
+          max_closing = std::max(max_closing, closing);
+        }
+      }
+      const Real w_sum = row.inverse_mass_sum;
       if (w_sum <= 0.0) continue;
-      const Contact& c = contacts[k];
-      const bool b = hasB(c);
-      Vec3 normal = c.normal;
+      Vec3 normal = row.normal;
       Real correction = 0.0;
-      if (c.kind == ContactKind::kContact) {
-        const Real depth = c.penetration - (Vec3(displacement_.col(c.a)) -
-                                            (b ? Vec3(displacement_.col(c.b)) : Vec3::Zero()))
-                                               .dot(normal);
+      if (row.kind == ContactKind::kContact) {
+        Vec3 moved = displacement_.col(row.a);
+        if (b) moved -= displacement_.col(row.b);
+        const Real depth = penetration_[k] - moved.dot(normal);
+        max_penetration = std::max(max_penetration, depth);
         if (depth <= slop) continue;
         correction = depth - 0.5 * slop;
       } else {
         Real error;
-        if (!linkState(c, x, normal, error)) continue;
-        const Real allowed = settings.rod_tolerance * c.length;
-        if (c.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) continue;
+        if (!linkState(contacts[k], x, normal, error)) continue;
+        max_penetration =
+            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+        const Real allowed = settings.rod_tolerance * (*links_)[contacts[k].link].length;
+        if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
+          continue;
+        }
         correction = error;
       }
       // dp_a = w_a / (w_a + w_b) d n,  dp_b = -w_b / (w_a + w_b) d n
-      const Real wa = inverse_mass[c.a];
+      const Real wa = inverse_mass[row.a];
       const Vec3 move_a = (correction * wa / w_sum) * normal;
-      x.col(c.a) += move_a;
-      displacement_.col(c.a) += move_a;
-      if (wa > 0.0) touch(c.a);
+      x.col(row.a) += move_a;
+      displacement_.col(row.a) += move_a;
+      if (wa > 0.0) touch(row.a);
       if (b) {
-        const Real wb = inverse_mass[c.b];
+        const Real wb = inverse_mass[row.b];
         const Vec3 move_b = (-correction * wb / w_sum) * normal;
-        x.col(c.b) += move_b;
-        displacement_.col(c.b) += move_b;
-        if (wb > 0.0) touch(c.b);
+        x.col(row.b) += move_b;
+        displacement_.col(row.b) += move_b;
+        if (wb > 0.0) touch(row.b);
       }
       corrected = true;
     }
-    if (!corrected) break;
+  }
+  stats.max_closing_velocity = max_closing;
+  warm_key_.swap(next_warm_key_);
+  warm_normal_.swap(next_warm_normal_);
+  warm_friction_.swap(next_warm_friction_);
+  warm_by_key_.clear();
+  if (corrected) {
+    // Stopped by max_iterations: measure what the last corrections left.
+    max_penetration = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Row& row = rows_[k];
+      if (row.inverse_mass_sum <= 0.0) continue;
+      if (row.kind == ContactKind::kContact) {
+        Vec3 moved = displacement_.col(row.a);
+        if (row.flags & kHasB) moved -= displacement_.col(row.b);
+        max_penetration = std::max(max_penetration, penetration_[k] - moved.dot(row.normal));
+      } else {
+        Vec3 normal;
+        Real error;
+        if (!linkState(contacts[k], x, normal, error)) continue;
+        max_penetration =
+            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+      }
+    }
   }
   return passes;
 }

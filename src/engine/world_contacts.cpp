@@ -44,11 +44,15 @@ class ContactSink {
   ContactSink(std::vector<Contact>& contacts, const std::size_t limit, std::size_t& dropped)
       : contacts_(contacts), limit_(limit), dropped_(dropped) {}
   void push(const Contact& contact) {
+    if (Contact* slot = add()) *slot = contact;
+  }
+  // A new contact to fill in place, or nullptr when it is dropped.
+  Contact* add() {
     if (limit_ != 0 && contacts_.size() >= limit_) {
       ++dropped_;
-      return;
+      return nullptr;
     }
-    contacts_.push_back(contact);
+    return &contacts_.emplace_back();
   }
 
  private:
@@ -57,22 +61,110 @@ class ContactSink {
   std::size_t& dropped_;
 };
 
-Contact colliderContact(const std::uint32_t i, const std::uint32_t slot, const ColliderId collider,
-                        const ShapeContact& shape, const Material& material) {
-  Contact c;
-  c.a = i;
-  c.key = colliderContactKey(slot, collider);
-  c.normal = shape.normal;
-  c.penetration = shape.penetration;
-  c.restitution = material.restitution;
-  c.friction = material.friction;
-  return c;
+void colliderContact(Contact* c, const std::uint32_t i, const std::uint32_t slot,
+                     const ColliderId collider, const ShapeContact& shape,
+                     const Material& material) {
+  if (c == nullptr) return;
+  c->a = i;
+  c->key = colliderContactKey(slot, collider);
+  c->normal = shape.normal;
+  c->penetration = shape.penetration;
+  c->restitution = material.restitution;
+  c->friction = material.friction;
 }
 
 // Gaps narrower than this get a contact too (speculative: it only stops them closing faster than
 // the gap within the substep), so a particle lifted off its support by a neighbour's correction
 // does not fall freely for a substep and land with a jolt.
 Real contactMargin(const CollisionSettings& settings) { return 2.0 * settings.penetration_slop; }
+
+// beta of x' = x + v h + beta a h^2 for a constant acceleration a: how much of this substep's
+// velocity change the integrator's position update already followed.
+Real positionWeight(const Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kExplicitEuler:
+      return 0.0;
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kImplicitEuler:
+      return 1.0;
+    case Integrator::kPositionVerlet:
+    case Integrator::kVelocityVerlet:
+    case Integrator::kRk4:
+      return 0.5;
+  }
+  return 0.0;
+}
+
+// Bottom-up order: heights along `up` quantised into buckets of half the smallest radius (at
+// least (highest - lowest) / n), so one counting sort orders the contacts in O(contacts + n);
+// contacts closer in height than that keep the broadphase's order. Bucket 0 holds the contacts
+// without a second particle (colliders, anchored links), which carry a pile from below.
+void heightBuckets(const ConstVec3Map& x, const ConstScalarMap& radius, const Vec3& up,
+                   std::vector<std::uint32_t>& bucket, std::uint32_t& buckets) {
+  const Eigen::Index n = x.cols();
+  Real lowest = std::numeric_limits<Real>::infinity();
+  Real highest = -lowest;
+  Real smallest_radius = lowest;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Real height = up.dot(x.col(i));
+    lowest = std::min(lowest, height);
+    highest = std::max(highest, height);
+    smallest_radius = std::min(smallest_radius, radius[i]);
+  }
+  const Real range = highest - lowest;
+  Real width =
+      std::max(range / static_cast<Real>(std::max<Eigen::Index>(n, 1)), 0.5 * smallest_radius);
+  if (!(std::isfinite(width) && width > 0.0)) width = 0.0;
+  const Real inverse_width = width > 0.0 ? 1.0 / width : 0.0;
+  const Real top = std::isfinite(range) ? range * inverse_width : 0.0;
+  buckets = static_cast<std::uint32_t>(std::min<Real>(top, static_cast<Real>(n))) + 2;
+  bucket.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Real t = (up.dot(x.col(i)) - lowest) * inverse_width;
+    // Not finite or beyond the range: clamped (t >= 0 is false for NaN).
+    const Real clamped = t >= 0.0 ? std::min(t, static_cast<Real>(buckets - 2)) : 0.0;
+    bucket[i] = 1 + static_cast<std::uint32_t>(clamped);
+  }
+}
+
+// The candidate pairs are found within this skin (a quarter of the smallest radius) beyond reach
+// and kept while no particle has moved more than half of it: two spheres that were not candidates
+// were more than the skin apart, so they cannot touch yet.
+Real candidateSkin(const Eigen::Ref<const ScalarArray>& radius) {
+  const Real smallest = radius.size() > 0 ? radius.minCoeff() : 0.0;
+  return std::isfinite(smallest) && smallest > 0.0 ? 0.25 * smallest : 0.0;
+}
+
+// Whether the candidate pairs found in an earlier substep still hold (see ContactWorkspace).
+bool candidatesStillValid(const ContactWorkspace& ws, const ParticleStore& particles,
+                          const CollisionSettings& settings, const Vec3& gravity) {
+  const auto x = particles.positions();
+  const auto radius = particles.radii();
+  if (!ws.candidates_valid || ws.candidate_layout != particles.layoutVersion() ||
+      ws.candidate_positions.cols() != x.cols() || ws.candidate_broadphase != settings.broadphase ||
+      ws.candidate_slop != settings.penetration_slop || ws.candidate_gravity != gravity ||
+      !(ws.candidate_radii.matrix() == radius.matrix())) {
+    return false;
+  }
+  // Moved at most half the skin since the pairs were found (NaN: not valid).
+  const Real moved_squared = (x - ws.candidate_positions).colwise().squaredNorm().maxCoeff();
+  return moved_squared <= 0.25 * ws.candidate_skin * ws.candidate_skin;
+}
+
+// Stable counting sort of `items` by `bucket` (one per item, below `buckets`) through `scratch`;
+// nothing moves when they are already in order.
+template <typename Item>
+void sortByBucket(std::vector<Item>& items, const std::vector<std::uint32_t>& bucket,
+                  const std::uint32_t buckets, std::vector<std::uint32_t>& start,
+                  std::vector<Item>& scratch) {
+  if (std::is_sorted(bucket.begin(), bucket.end())) return;
+  start.assign(static_cast<std::size_t>(buckets) + 1, 0);
+  for (const std::uint32_t b : bucket) ++start[b + 1];
+  for (std::uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+  scratch.resize(items.size());
+  for (std::size_t k = 0; k < items.size(); ++k) scratch[start[bucket[k]]++] = items[k];
+  items.swap(scratch);
+}
 
 }  // namespace
 
@@ -383,7 +475,6 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       const Vec3 xi = x.col(i);
       const Real r = radius[i];
       const auto index = static_cast<std::uint32_t>(i);
-      const std::uint32_t slot = particles_.idAt(i).index;
       // The collider a swept test stopped this particle at gets a contact even when just touching.
       const ContactWorkspace::ColliderHit* hit = nullptr;
       if (swept && ws.collider_hit[i] >= 0 &&
@@ -396,13 +487,20 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
           // Stopped at its time of impact: touching, whatever rounding says.
           const ShapeContact touching{shape ? shape->normal : hit->normal,
                                       shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
-          sink.push(colliderContact(index, slot, id, touching, material));
+          colliderContact(sink.add(), index, ws.slots[i], id, touching, material);
         } else if (shape) {
-          sink.push(colliderContact(index, slot, id, *shape, material));
+          colliderContact(sink.add(), index, ws.slots[i], id, *shape, material);
         }
       };
-      for (const PlaneCollider& c : colliders_.planes)
-        add(sphereVsPlane(xi, r, c, margin), c.id, c.material);
+      for (const PlaneCollider& c : colliders_.planes) {
+        // sphereVsPlane() inline: most spheres are far from most planes.
+        const Real penetration = r - (c.normal.dot(xi) - c.offset);
+        if (penetration > -margin) {
+          add(ShapeContact{c.normal, penetration}, c.id, c.material);
+        } else if (hit) {
+          add(std::nullopt, c.id, c.material);
+        }
+      }
       for (const SphereCollider& c : colliders_.spheres) {
         add(sphereVsSphere(xi, r, c.center, c.radius, margin), c.id, c.material);
       }
@@ -435,22 +533,22 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
         if (!touching) continue;
         penetration = std::max(penetration, Real{0.0});
       }
-      Contact c;
-      c.a = a;
-      c.b = b;
-      c.normal = distance > 1e-12 ? Vec3(d / distance) : Vec3::UnitZ();
-      c.penetration = penetration;
-      c.key = pairContactKey(particles_.idAt(a).index, particles_.idAt(b).index);
+      Contact* c = sink.add();
+      if (c == nullptr) continue;
+      c->a = a;
+      c->b = b;
+      c->normal = distance > 1e-12 ? Vec3(d * (1.0 / distance)) : Vec3::UnitZ();
+      c->penetration = penetration;
+      c->key = pairContactKey(ws.slots[a], ws.slots[b]);
       if (custom_materials) {
         const Material ma = particleMaterial(a);
         const Material mb = particleMaterial(b);
-        c.restitution = 0.5 * (ma.restitution + mb.restitution);
-        c.friction = std::sqrt(ma.friction * mb.friction);
+        c->restitution = 0.5 * (ma.restitution + mb.restitution);
+        c->friction = std::sqrt(ma.friction * mb.friction);
       } else {
-        c.restitution = settings.particle_restitution;
-        c.friction = settings.particle_friction;
+        c->restitution = settings.particle_restitution;
+        c->friction = settings.particle_friction;
       }
-      sink.push(c);
     }
   }
 
@@ -466,8 +564,8 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
     c.a = a;
     c.b = b;
     c.kind = kind;
-    c.anchor = anchor;
-    c.length = length;
+    c.link = static_cast<std::uint32_t>(ws.links.size());
+    ws.links.push_back(LinkGeometry{anchor, length});
     c.restitution = restitution;
     c.key = linkContactKey(id);
     sink.push(c);
@@ -498,13 +596,24 @@ void World::resolveContacts(const Real h) {
   const bool swept = settings.continuous && static_cast<std::size_t>(ws.substep_start.cols()) == n;
   last_contact_stats_ = ContactStats{};
 
-  ws.pairs.clear();
-  if (settings.particle_collisions && n > 1) {
-    // Boxes around each sphere; with swept tests, around its whole path over the substep.
+  const bool bottom_up = config_.gravity.squaredNorm() > 0.0;
+  std::uint32_t buckets = 0;
+  const auto find_buckets = [&] {
+    if (buckets != 0 || !bottom_up) return;
+    heightBuckets(ConstVec3Map(x.data(), 3, x.cols()), ConstScalarMap(radius.data(), radius.size()),
+                  -config_.gravity.normalized(), ws.particle_bucket, buckets);
+  };
+  if (!(settings.particle_collisions && n > 1)) {
+    ws.pairs.clear();
+    ws.candidates_valid = false;
+  } else if (swept || !candidatesStillValid(ws, particles_, settings, config_.gravity)) {
+    // Boxes around each sphere, grown by the skin; with swept tests, around its whole path over
+    // the substep (then without skin: the list is made again every substep).
+    const Real skin = swept ? 0.0 : candidateSkin(radius);
     ws.box_lo.resize(3, static_cast<Eigen::Index>(n));
     ws.box_hi.resize(3, static_cast<Eigen::Index>(n));
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 r = Vec3::Constant(radius[i] + 0.5 * contactMargin(settings));
+      const Vec3 r = Vec3::Constant(radius[i] + 0.5 * contactMargin(settings) + 0.5 * skin);
       Vec3 lo = x.col(i);
       Vec3 hi = lo;
       if (swept) {
@@ -515,8 +624,50 @@ void World::resolveContacts(const Real h) {
       ws.box_hi.col(i) = hi + r;
     }
     ws.broadphase.findPairs(settings.broadphase, ws.box_lo, ws.box_hi, ws.pairs);
-    if (!settings.collide_linked) buildLinkedPairs(ws);
+    if (!swept) {
+      // Only pairs within reach + margin + skin can touch before the list is made again (each
+      // sphere moves at most half the skin): the boxes' corners are left out here, once.
+      const Real extra = contactMargin(settings) + skin;
+      const auto kept = std::remove_if(ws.pairs.begin(), ws.pairs.end(), [&](const IndexPair& p) {
+        const Real bound = radius[p.a] + radius[p.b] + extra;
+        // Kept unless clearly beyond (the slack covers rounding in the squares).
+        return !((x.col(p.a) - x.col(p.b)).squaredNorm() <= bound * bound * (1.0 + 1e-9));
+      });
+      ws.pairs.erase(kept, ws.pairs.end());
+    }
+    if (ws.pairs.size() > 1) {
+      // Pairs in the order (height bucket, a, b), by three stable counting sorts from the last
+      // key: bottom up for the resolver, in memory order within a layer, and the same whichever
+      // broadphase found them.
+      const auto sort_by = [&](const auto key, const std::uint32_t key_count) {
+        ws.item_bucket.resize(ws.pairs.size());
+        for (std::size_t k = 0; k < ws.pairs.size(); ++k) ws.item_bucket[k] = key(ws.pairs[k]);
+        sortByBucket(ws.pairs, ws.item_bucket, key_count, ws.bucket_start, ws.sorted_pairs);
+      };
+      const auto particle_count = static_cast<std::uint32_t>(n);
+      sort_by([](const IndexPair& p) { return p.b; }, particle_count);
+      sort_by([](const IndexPair& p) { return p.a; }, particle_count);
+      if (bottom_up) {
+        find_buckets();
+        sort_by(
+            [&](const IndexPair& p) {
+              return std::min(ws.particle_bucket[p.a], ws.particle_bucket[p.b]);
+            },
+            buckets);
+      }
+    }
+    ws.candidates_valid = !swept;
+    if (ws.candidates_valid) {
+      ws.candidate_skin = skin;
+      ws.candidate_positions = x;
+      ws.candidate_radii = radius;
+      ws.candidate_layout = particles_.layoutVersion();
+      ws.candidate_broadphase = settings.broadphase;
+      ws.candidate_slop = settings.penetration_slop;
+      ws.candidate_gravity = config_.gravity;
+    }
   }
+  if (settings.particle_collisions && n > 1 && !settings.collide_linked) buildLinkedPairs(ws);
   if (swept) {
     sweepParticles(ws);
   } else {
@@ -525,31 +676,35 @@ void World::resolveContacts(const Real h) {
     ws.pair_is_swept.clear();
   }
 
+  if (ws.slots_layout != particles_.layoutVersion() || ws.slots.size() != n) {
+    // Each particle's slot, for the contact keys; it changes only with the layout.
+    ws.slots.resize(n);
+    for (std::size_t i = 0; i < n; ++i) ws.slots[i] = particles_.idAt(i).index;
+    ws.slots_layout = particles_.layoutVersion();
+  }
   ws.contacts.clear();
+  ws.links.clear();
   generateContacts(ws, dropped_this_step_);
-  if (config_.gravity.squaredNorm() > 0.0 && ws.contacts.size() > 1) {
+  if (bottom_up && ws.contacts.size() > 1) {
     // Bottom up along gravity (colliders first): a forward pass carries the support from the
-    // ground to the top of a pile.
-    const Vec3 up = -config_.gravity.normalized();
-    ws.order.clear();
-    for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
-      const Contact& c = ws.contacts[k];
-      const Real height = c.b == kNoParticle ? -std::numeric_limits<Real>::infinity()
-                                             : std::min(up.dot(x.col(c.a)), up.dot(x.col(c.b)));
-      ws.order.emplace_back(height, static_cast<std::uint32_t>(k));
-    }
-    // Often already in order (every collider contact ranks first, in generation order): then
-    // the permutation is the identity and the copy is skipped.
-    if (!std::is_sorted(ws.order.begin(), ws.order.end())) {
-      std::sort(ws.order.begin(), ws.order.end());
-      ws.sorted_contacts.clear();
-      for (const auto& entry : ws.order) ws.sorted_contacts.push_back(ws.contacts[entry.second]);
-      ws.contacts.swap(ws.sorted_contacts);
+    // ground to the top of a pile. Collider contacts come first and the pairs were sorted, so
+    // only links (listed last) usually need moving.
+    // Without links the contacts are the collider ones (bucket 0), then the sorted pairs' ones.
+    if (!links_.empty()) {
+      find_buckets();
+      ws.item_bucket.resize(ws.contacts.size());
+      for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
+        const Contact& c = ws.contacts[k];
+        ws.item_bucket[k] =
+            c.b == kNoParticle ? 0 : std::min(ws.particle_bucket[c.a], ws.particle_bucket[c.b]);
+      }
+      sortByBucket(ws.contacts, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_contacts);
     }
   }
 
-  ws.resolver.resolve(ws.contacts, particles_.positions(), particles_.velocities(),
-                      particles_.inverseMasses(), acceleration_, h, settings, last_contact_stats_);
+  ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
+                      particles_.inverseMasses(), acceleration_, h, settings,
+                      positionWeight(config_.integrator), last_contact_stats_);
   last_contact_stats_.contacts = ws.contacts.size();
   last_contact_stats_.dropped = dropped_this_step_;
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -47,6 +48,11 @@ class BroadphaseFinder {
   };
   void sortAndSweep(const Vec3Array& lo, const Vec3Array& hi, std::vector<IndexPair>& pairs);
   void uniformGrid(const Vec3Array& lo, const Vec3Array& hi, std::vector<IndexPair>& pairs);
+  // Boxes of similar size packed in a compact region: a dense table of cells `largest` across,
+  // each box in the cell of its low corner, each cell against its neighbours. False (nothing
+  // done) when the table would be too large for the number of boxes.
+  bool denseGrid(const Vec3Array& lo, const Vec3Array& hi, Real largest,
+                 std::vector<IndexPair>& pairs);
 
   std::vector<SweepEntry> sweep_;
   std::vector<CellEntry> entries_;
@@ -55,6 +61,11 @@ class BroadphaseFinder {
   std::vector<std::uint32_t> oversize_;
   std::vector<Real> extents_;
   std::vector<std::uint32_t> bucket_cursor_;
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<std::uint32_t> box_cell_;
+  std::vector<std::uint32_t> cell_boxes_;
+  using Box = std::array<Real, 6>;  // lo x, y, z, hi x, y, z
+  std::vector<Box> sorted_boxes_;
 };
 
 // The O(N^2) reference: every overlapping pair, tested one by one. For tests only.

@@ -28,12 +28,15 @@ struct CollisionSettings {
   // Material of particle-particle contacts, unless both particles were given their own.
   Real particle_restitution = 0.5;
   Real particle_friction = 0.0;
-  int max_iterations = 20;         // Gauss-Seidel passes per phase (velocity, position)
-  Real penetration_slop = 0.001;   // m of overlap left alone, so resting contacts do not jitter
-  bool collide_linked = false;     // particles joined by a cable or rod still collide
-  Real rod_tolerance = 1e-9;       // relative length error a rod is allowed
-  Real velocity_tolerance = 1e-9;  // m/s: a velocity pass changing less than this ends the phase
-  std::size_t max_contacts = 0;    // 0: the contact buffer grows; else extra contacts are dropped
+  int max_iterations = 20;        // Gauss-Seidel passes per phase (velocity, position)
+  Real penetration_slop = 0.001;  // m of overlap left alone, so resting contacts do not jitter
+  bool collide_linked = false;    // particles joined by a cable or rod still collide
+  Real rod_tolerance = 1e-9;      // relative length error a rod is allowed
+  // m/s: a velocity pass changing no velocity by more than this ends the phase. 1e-4 m/s moves a
+  // particle by 1e-4 h per substep (under 2 um at 60 Hz); warm-started resting contacts reach it
+  // in one or two passes, where 1e-9 was never reached in a pile.
+  Real velocity_tolerance = 1e-4;
+  std::size_t max_contacts = 0;  // 0: the contact buffer grows; else extra contacts are dropped
 };
 
 // Finite values, restitution in [0, 1], friction >= 0, max_iterations in [1, 10000], slop >= 0,

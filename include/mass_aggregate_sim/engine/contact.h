@@ -20,21 +20,27 @@ constexpr std::uint32_t kNoParticle = 0xFFFFFFFFu;
 
 // One constraint for the resolver. An impulse j acts as +j n on a and -j n on b, so the
 // separating velocity is v_sep = (v_a - v_b).n and v_sep < 0 means the violation is growing.
+// 72 bytes: what only links need is in their LinkGeometry.
 struct Contact {
   std::uint32_t a = kNoParticle;
   std::uint32_t b = kNoParticle;
   ContactKind kind = ContactKind::kContact;
+  std::uint32_t link = 0;  // links: index of their LinkGeometry
   Vec3 normal = Vec3::UnitZ();
   // How far a must move along normal (relative to b) to satisfy the constraint; links recompute it
   // from the positions, contacts track it as penetration - (dx_a - dx_b).n.
   Real penetration = 0.0;
   Real restitution = 0.0;
   Real friction = 0.0;
-  Real length = 0.0;           // links: the rod length or the cable's maximum
-  Vec3 anchor = Vec3::Zero();  // anchored links: the fixed end
   // Names the same contact in the next substep, so it can start from this one's impulse:
   // contactKey() of its particles' slots, collider or link.
   std::uint64_t key = 0;
+};
+
+// What a link constraint needs beyond its Contact.
+struct LinkGeometry {
+  Vec3 anchor = Vec3::Zero();  // anchored links: the fixed end
+  Real length = 0.0;           // the rod length or the cable's maximum
 };
 
 // Keys: particle pairs by their two slots, particle-collider by slot and collider id, links by id.

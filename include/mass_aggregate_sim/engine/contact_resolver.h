@@ -20,12 +20,14 @@ namespace engine {
 // impulse j = (v_target - v_sep) / (w_a + w_b), shared by inverse mass w. The target is
 // -e v_impact, where v_impact is v_sep less what the forces (of lastAccelerations) built up along
 // n while the particles were already in contact during the substep. A contact whose closing speed,
-// less all the forces built over the substep, is below two more substeps of it is resting and gets
-// v_target = 0, which keeps resting contacts still without bouncing. Friction then removes
-// tangential velocity, bounded by mu j. Rods are bilateral (target 0, either sign); cables pull
-// only and reflect with their restitution. Links keep their total impulse (clamped to pulling for
-// cables) and start the next substep from it (warm starting), so a loaded structure does not
-// rebuild its tensions from zero every substep.
+// less all the forces built over the substep, is below two more substeps of it is resting and
+// aims at touching (v_target = 0 when overlapping), which keeps resting contacts still without
+// bouncing. Friction then removes tangential velocity, bounded by mu j. Rods are bilateral
+// (target 0, either sign); cables pull only and reflect with their restitution. Every constraint
+// keeps its total normal and friction impulse and starts the next substep from it (warm
+// starting), so a pile or a loaded structure does not rebuild its support from zero every substep.
+//
+// Then resting contacts move their particles with their impulses (see resolve()).
 //
 // Position pass, per contact: overlap beyond the slop is removed down to half the slop, moving a
 // and b by w_a/(w_a+w_b) and w_b/(w_a+w_b) of it (dp_a = m_b/(m_a+m_b) d n). Links are recomputed
@@ -33,48 +35,109 @@ namespace engine {
 class ContactResolver {
  public:
   // acceleration: each particle's acceleration over the last substep of length h.
-  void resolve(std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
-               const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h, const CollisionSettings& settings, ContactStats& stats);
+  // position_weight: beta of the integrator's position update x' = x + v h + beta a h^2 (1 for
+  // semi-implicit and implicit Euler, 1/2 for the Verlets and RK4, 0 for explicit Euler). After the
+  // velocity phase each particle moves by beta h w J for the impulses J of its resting contacts, as
+  // if those impulses had been forces inside the step: a resting particle then ends where it
+  // started instead of sinking by beta g h^2 for the position passes to push back up.
+  // links: the geometry of link constraints, by Contact::link.
+  void resolve(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links, Vec3Map x,
+               Vec3Map v, const ConstScalarMap& inverse_mass,
+               const Eigen::Ref<const Vec3Array>& acceleration, Real h,
+               const CollisionSettings& settings, Real position_weight, ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
-  void clearWarmStart() { warm_impulses_.clear(); }
+  void clearWarmStart() {
+    warm_key_.clear();
+    warm_normal_.clear();
+    warm_friction_.clear();
+    warm_by_key_.clear();
+  }
   // The total normal impulse the contact named `key` ended the last substep with (the impulse
   // kept for warm starting; 0 when it did not act), and that substep's length (0 before any).
   Real lastImpulse(std::uint64_t key) const;
   Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
-    for (const auto& [key, impulse] : warm_impulses_) {
-      hasher.add(key);
-      hasher.add(impulse);
+    for (std::size_t k = 0; k < warm_key_.size(); ++k) {
+      const bool friction = !warm_friction_.empty() && !warm_friction_[k].isZero(0.0);
+      if (warm_normal_[k] == 0.0 && !friction) continue;
+      hasher.add(warm_key_[k]);
+      hasher.add(warm_normal_[k]);
+      if (friction) hasher.add(warm_friction_[k]);
     }
   }
 
  private:
-  void touch(std::uint32_t i);
-  int resolveVelocities(std::vector<Contact>& contacts, Vec3Map& v,
-                        const ConstScalarMap& inverse_mass, Real h,
+  enum RowFlag : std::uint8_t {
+    kHasB = 1,         // a second particle (else a collider or an anchor)
+    kActive = 2,       // takes part in the velocity phase
+    kResting = 4,      // resting: target 0 (or touching), follows its impulse in position
+    kFriction = 8,     // a contact with friction > 0
+    kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
+  };
+  // The velocity phase's view of one constraint, in one cache line.
+  struct Row {
+    std::uint32_t a;
+    std::uint32_t b;  // a when there is no second particle (never moved: w_b = 0)
+    std::uint8_t flags;
+    ContactKind kind;
+    Vec3 normal;
+    Real inverse_mass_sum;  // w_a + w_b; 0: inactive
+    Real total;             // accumulated normal impulse this substep
+    Real target;            // target separating velocity
+  };
+
+  void touch(const std::uint32_t i) {
+    if (touched_flag_[i]) return;
+    touched_flag_[i] = 1;
+    touched_.push_back(i);
+  }
+  // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
+  std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
+  void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+               const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
+               Real h);
+  int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
-  int resolvePositions(std::vector<Contact>& contacts, Vec3Map& x,
-                       const ConstScalarMap& inverse_mass, const CollisionSettings& settings);
+  // Moves each particle with its resting contacts' impulses (see resolve()).
+  void followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass);
+  void indexWarmByKey() const;
+  // Also, in its first pass, keeps the impulses for the next substep and measures the closing
+  // speed left (velocities are final by then).
+  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, const Vec3Map& v,
+                       const ConstScalarMap& inverse_mass, Real h,
+                       const CollisionSettings& settings, ContactStats& stats);
   // For a link: current normal (from a towards b) and length error; false when degenerate.
   bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
 
-  // Per contact: w_a + w_b, closing velocity the forces built while in contact (<= 0), and
-  // whether the contact is resting.
-  std::vector<Real> inverse_mass_sum_;
-  std::vector<Real> built_velocity_;
-  std::vector<std::uint8_t> resting_;
-  std::vector<std::uint8_t> velocity_active_;
-  std::vector<Real> total_;           // per contact: accumulated normal impulse this substep
-  std::vector<Real> target_;          // per contact: target separating velocity
-  std::vector<Vec3> friction_total_;  // per contact: accumulated friction impulse
-  // (contact key, normal impulse) of the last substep, sorted by key: the warm start.
-  std::vector<std::pair<std::uint64_t, Real>> warm_impulses_;
-  std::vector<std::pair<std::uint64_t, Real>> next_warm_impulses_;
+  const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
+
+  std::vector<Row> rows_;
+  ScalarArray acceleration_norm_;  // per particle
+  Vec3Array initial_velocity_;     // per particle, before the warm starts
+  // Per particle: == stamp_ when one of its active rows is not a resting contact.
+  std::vector<std::uint32_t> mixed_stamp_;
+  std::uint32_t stamp_ = 0;
+  bool any_mixed_ = false;
+  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
+  std::vector<Real> friction_coefficient_;
+  std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
+  // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
+  // friction impulse in the world frame; no friction entries when no contact had friction), in
+  // that substep's contact order, so a settled scene finds each at the cursor; warm_by_key_
+  // (key, index) sorted by key for the others, built when needed.
+  std::vector<std::uint64_t> warm_key_;
+  std::vector<Real> warm_normal_;
+  std::vector<Vec3> warm_friction_;
+  std::vector<std::uint64_t> next_warm_key_;
+  std::vector<Real> next_warm_normal_;
+  std::vector<Vec3> next_warm_friction_;
+  bool any_friction_ = false;  // some row of this substep has friction
+  mutable std::vector<std::pair<std::uint64_t, std::uint32_t>> warm_by_key_;
   Real last_substep_ = 0.0;
+  Real follow_scale_ = 0.0;  // beta h of the last resolve()
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
   std::vector<std::uint32_t> touched_;

@@ -16,9 +16,28 @@ namespace engine {
 // Buffers the contact phase of World keeps between substeps (never part of the world's state).
 struct ContactWorkspace {
   std::vector<Contact> contacts;
+  std::vector<LinkGeometry> links;   // of the link contacts, by Contact::link
+  std::vector<std::uint32_t> slots;  // per particle: its id's slot, for the contact keys
+  std::uint64_t slots_layout = ~std::uint64_t{0};  // ParticleStore::layoutVersion() of slots
   std::vector<Contact> sorted_contacts;
-  std::vector<std::pair<Real, std::uint32_t>> order;  // (height, contact) for bottom-up order
+  // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.
+  std::vector<std::uint32_t> particle_bucket;
+  std::vector<std::uint32_t> item_bucket;
+  std::vector<std::uint32_t> bucket_start;
+  // Candidate pairs, kept between substeps while valid: the pairs less than candidate_skin beyond
+  // reach (and margin), they hold while no particle moved more than half of it from
+  // candidate_positions and nothing else they depend on changed (particle layout and radii,
+  // broadphase, slop, gravity).
   std::vector<IndexPair> pairs;
+  bool candidates_valid = false;
+  Real candidate_skin = 0.0;
+  Vec3Array candidate_positions;
+  ScalarArray candidate_radii;
+  std::uint64_t candidate_layout = 0;
+  Broadphase candidate_broadphase = Broadphase::kSortAndSweep;
+  Real candidate_slop = 0.0;
+  Vec3 candidate_gravity = Vec3::Zero();
+  std::vector<IndexPair> sorted_pairs;
   std::vector<std::uint8_t> pair_is_swept;  // per pair: caught by the swept test this substep
   std::vector<std::uint64_t> linked_pairs;  // sorted (min dense << 32 | max dense) of linked pairs
   Vec3Array box_lo;
