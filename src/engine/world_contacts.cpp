@@ -687,9 +687,9 @@ void World::resolveContacts(const Real h) {
   generateContacts(ws, dropped_this_step_);
   if (bottom_up && ws.contacts.size() > 1) {
     // Bottom up along gravity (colliders first): a forward pass carries the support from the
-    // ground to the top of a pile. Collider contacts come first and the pairs were sorted, so
-    // only links (listed last) usually need moving.
-    // Without links the contacts are the collider ones (bucket 0), then the sorted pairs' ones.
+    // ground to the top of a pile. Without links the contacts already are in that order: the
+    // collider ones (bucket 0), then those of the pairs, sorted when the list was made. Links
+    // (listed last) are sorted in with the others by the buckets of now.
     if (!links_.empty()) {
       find_buckets();
       ws.item_bucket.resize(ws.contacts.size());
