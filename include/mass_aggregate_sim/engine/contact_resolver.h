@@ -32,6 +32,11 @@ namespace engine {
 // Position pass, per contact: overlap beyond the slop is removed down to half the slop, moving a
 // and b by w_a/(w_a+w_b) and w_b/(w_a+w_b) of it (dp_a = m_b/(m_a+m_b) d n). Links are recomputed
 // from the current positions and corrected to their exact length.
+//
+// Isolated contacts (a contact, not a link, whose particles are in no other constraint of the
+// substep: a ball on the ground) take all of these steps at once in the set-up pass, with the same
+// formulas: a lone row's Gauss-Seidel converges in one pass, and nothing else moves its particles.
+// Only the others go through the passes above.
 class ContactResolver {
  public:
   // acceleration: each particle's acceleration over the last substep of length h.
@@ -47,6 +52,8 @@ class ContactResolver {
                const CollisionSettings& settings, Real position_weight, ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
+  // How many contacts of the last resolve() were isolated (solved in the set-up pass).
+  std::size_t isolatedContacts() const { return isolated_count_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
   void clearWarmStart() {
     warm_key_.clear();
@@ -94,11 +101,27 @@ class ContactResolver {
     touched_flag_[i] = 1;
     touched_.push_back(i);
   }
+  // Keeps v_i before its first warm start or impulse (targets and the follow are measured on it).
+  void keepInitialVelocity(const std::uint32_t i, const Vec3Map& v) {
+    if (initial_stamp_[i] == stamp_) return;
+    initial_stamp_[i] = stamp_;
+    initial_velocity_.col(i) = v.col(i);
+  }
+  // Marks which particles take part in more than one contact (see isShared()).
+  void countParticleUses(const std::vector<Contact>& contacts);
+  bool isShared(const std::uint32_t i) const { return uses_[i] != (std::uint64_t{stamp_} << 1); }
+  // Set-up, velocity solve, follow, position correction, warm start kept and stats of contact k,
+  // whose particles are in no other constraint. `previous_impulse` / `previous_friction` (may be
+  // null): its warm start.
+  void solveIsolated(std::size_t k, const Contact& c, Vec3Map& x, Vec3Map& v,
+                     const ConstScalarMap& inverse_mass,
+                     const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
+                     Real previous_impulse, const Vec3* previous_friction);
   // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
-  void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+  void prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h);
+               Real h, Real slop);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
   // Moves each particle with its resting contacts' impulses (see resolve()).
@@ -114,14 +137,25 @@ class ContactResolver {
 
   const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
 
-  std::vector<Row> rows_;
-  ScalarArray acceleration_norm_;  // per particle
-  Vec3Array initial_velocity_;     // per particle, before the warm starts
+  std::vector<Row> rows_;                   // the constraints that are not isolated
+  std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
+  // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
+  std::vector<std::uint64_t> uses_;
+  Vec3Array initial_velocity_;                // per particle of a row, before the warm starts
+  std::vector<std::uint32_t> initial_stamp_;  // per particle: == stamp_ when kept this substep
   // Per particle: == stamp_ when one of its active rows is not a resting contact.
   std::vector<std::uint32_t> mixed_stamp_;
   std::uint32_t stamp_ = 0;
   bool any_mixed_ = false;
-  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
+  // The isolated contacts' share of the stats, and their particles changed (not in touched_flag_
+  // nor displacement_: no row meets them).
+  std::size_t isolated_count_ = 0;
+  Real isolated_max_penetration_ = 0.0;
+  Real isolated_max_closing_ = 0.0;
+  bool isolated_corrected_ = false;
+  std::vector<std::uint32_t> isolated_touched_;
+  std::size_t displaced_count_ = 0;  // touched_[0, displaced_count_) have displacement_ entries
+  std::vector<Real> penetration_;    // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
