@@ -75,13 +75,13 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
                               ContactStats& stats) {
-  for (std::size_t t = 0; t < displaced_count_; ++t) {
-    const std::uint32_t i = touched_[t];
+  // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
+  for (const std::uint32_t i : touched_) {
+    if (!touched_flag_[i]) continue;
     touched_flag_[i] = 0;
     displacement_.col(i).setZero();
   }
   touched_.clear();
-  displaced_count_ = 0;
   last_substep_ = h;
   links_ = &links;
   follow_scale_ = h * position_weight;
@@ -104,8 +104,6 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
   stats.max_penetration = std::max(stats.max_penetration, isolated_max_penetration_);
   stats.max_closing_velocity = std::max(stats.max_closing_velocity, isolated_max_closing_);
   stats.iterations = stats.velocity_iterations + stats.position_iterations;
-  displaced_count_ = touched_.size();
-  touched_.insert(touched_.end(), isolated_touched_.begin(), isolated_touched_.end());
   links_ = nullptr;
 }
 
@@ -121,6 +119,7 @@ void ContactResolver::countParticleUses(const std::vector<Contact>& contacts) {
   }
 }
 
+template <bool kWithB>
 void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3Map& x, Vec3Map& v,
                                     const ConstScalarMap& inverse_mass,
                                     const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
@@ -129,7 +128,7 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
   // The same steps and formulas as prepare(), resolveVelocities(), followRestingImpulses() and
   // resolvePositions() for one row whose particles nothing else moves. Velocities and moves are
   // kept in registers and stored once.
-  const bool b = hasB(c);
+  constexpr bool b = kWithB;
   const Real wa = inverse_mass[c.a];
   const Real wb = b ? inverse_mass[c.b] : 0.0;
   const Real w_sum = wa + wb;
@@ -258,12 +257,12 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
   if (touched_a) {
     v.col(c.a) = va;
     x.col(c.a) = xa;
-    isolated_touched_.push_back(c.a);
+    touched_.push_back(c.a);
   }
   if (touched_b) {
     v.col(c.b) = vb;
     x.col(c.b) = xb;
-    isolated_touched_.push_back(c.b);
+    touched_.push_back(c.b);
   }
 }
 
@@ -282,8 +281,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
   if (static_cast<std::size_t>(initial_velocity_.cols()) != n) initial_velocity_.resize(3, n);
   countParticleUses(contacts);
   any_mixed_ = false;
-  rows_.resize(count);
-  row_contact_.resize(count);
+  // Never shrunk: growing back would value-initialise every row again.
+  if (rows_.size() < count) {
+    rows_.resize(count);
+    row_contact_.resize(count);
+  }
   penetration_.resize(count);
   friction_coefficient_.resize(count);
   friction_total_.resize(count);
@@ -295,7 +297,6 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
   isolated_max_penetration_ = 0.0;
   isolated_max_closing_ = 0.0;
   isolated_corrected_ = false;
-  isolated_touched_.clear();
   std::size_t cursor = 0;
   std::size_t r = 0;
   for (std::size_t k = 0; k < count; ++k) {
@@ -309,9 +310,15 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     if (c.kind == ContactKind::kContact && !isShared(c.a) && !(b && isShared(c.b))) {
       ++isolated_count_;
       const bool warm_friction = found >= 0 && !warm_friction_.empty();
-      solveIsolated(k, c, x, v, inverse_mass, acceleration, h, slop,
-                    found >= 0 ? warm_normal_[found] : 0.0,
-                    warm_friction ? &warm_friction_[found] : nullptr);
+      const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
+      const Vec3* const previous_friction = warm_friction ? &warm_friction_[found] : nullptr;
+      if (b) {
+        solveIsolated<true>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+                            previous_friction);
+      } else {
+        solveIsolated<false>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+                             previous_friction);
+      }
       continue;
     }
     const std::size_t row_index = r++;
@@ -419,13 +426,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
       touch(row.b);
     }
   }
-  rows_.resize(r);
-  row_contact_.resize(r);
+  row_count_ = r;
 }
 
 int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                                        const CollisionSettings& settings) {
-  const std::size_t count = rows_.size();
+  const std::size_t count = row_count_;
   int passes = 0;
   while (passes < settings.max_iterations) {
     ++passes;
@@ -484,14 +490,15 @@ void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
   // A particle whose active rows are all resting contacts changed velocity by exactly those
   // impulses: dx = beta h (v - v_initial).
   for (const std::uint32_t i : touched_) {
-    if (mixed_stamp_[i] == stamp_) continue;
+    // Unflagged: an isolated contact's particle, already followed.
+    if (!touched_flag_[i] || mixed_stamp_[i] == stamp_) continue;
     const Vec3 move = scale * (v.col(i) - initial_velocity_.col(i));
     x.col(i) += move;
     displacement_.col(i) += move;
   }
   if (!any_mixed_) return;
   // The others (also hit, linked or in a gap) follow their resting contacts' impulses one by one.
-  for (std::size_t k = 0; k < rows_.size(); ++k) {
+  for (std::size_t k = 0; k < row_count_; ++k) {
     const Row& row = rows_[k];
     if (!(row.flags & kActive) || row.kind != ContactKind::kContact || !(row.flags & kResting)) {
       continue;
@@ -515,7 +522,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
                                       const Vec3Map& v, const ConstScalarMap& inverse_mass,
                                       const Real h, const CollisionSettings& settings,
                                       ContactStats& stats) {
-  const std::size_t count = rows_.size();
+  const std::size_t count = row_count_;
   const Real slop = settings.penetration_slop;
   Real& max_penetration = stats.max_penetration;
   Real max_closing = 0.0;

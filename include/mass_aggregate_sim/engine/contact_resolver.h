@@ -113,6 +113,7 @@ class ContactResolver {
   // Set-up, velocity solve, follow, position correction, warm start kept and stats of contact k,
   // whose particles are in no other constraint. `previous_impulse` / `previous_friction` (may be
   // null): its warm start.
+  template <bool kWithB>
   void solveIsolated(std::size_t k, const Contact& c, Vec3Map& x, Vec3Map& v,
                      const ConstScalarMap& inverse_mass,
                      const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
@@ -137,7 +138,8 @@ class ContactResolver {
 
   const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
 
-  std::vector<Row> rows_;                   // the constraints that are not isolated
+  std::vector<Row> rows_;  // the constraints that are not isolated: [0, row_count_)
+  std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
   // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
   std::vector<std::uint64_t> uses_;
@@ -147,15 +149,13 @@ class ContactResolver {
   std::vector<std::uint32_t> mixed_stamp_;
   std::uint32_t stamp_ = 0;
   bool any_mixed_ = false;
-  // The isolated contacts' share of the stats, and their particles changed (not in touched_flag_
-  // nor displacement_: no row meets them).
+  // The isolated contacts' share of the stats (their particles are in touched_ without a
+  // touched_flag_ or a displacement_ entry: no row meets them).
   std::size_t isolated_count_ = 0;
   Real isolated_max_penetration_ = 0.0;
   Real isolated_max_closing_ = 0.0;
   bool isolated_corrected_ = false;
-  std::vector<std::uint32_t> isolated_touched_;
-  std::size_t displaced_count_ = 0;  // touched_[0, displaced_count_) have displacement_ entries
-  std::vector<Real> penetration_;    // per row: the contact's overlap (links: length error)
+  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
