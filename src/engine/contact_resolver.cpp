@@ -76,12 +76,15 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const CollisionSettings& settings, const Real position_weight,
                               ContactStats& stats) {
   // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
-  for (const std::uint32_t i : touched_) {
-    if (!touched_flag_[i]) continue;
-    touched_flag_[i] = 0;
-    displacement_.col(i).setZero();
+  if (flagged_count_ > 0) {
+    for (const std::uint32_t i : touched_) {
+      if (!touched_flag_[i]) continue;
+      touched_flag_[i] = 0;
+      displacement_.col(i).setZero();
+    }
   }
   touched_.clear();
+  flagged_count_ = 0;
   last_substep_ = h;
   links_ = &links;
   follow_scale_ = h * position_weight;
@@ -489,8 +492,10 @@ void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
   // dx = beta h w J: the move the integrator would have made had the impulses been in the step.
   // A particle whose active rows are all resting contacts changed velocity by exactly those
   // impulses: dx = beta h (v - v_initial).
-  for (const std::uint32_t i : touched_) {
-    // Unflagged: an isolated contact's particle, already followed.
+  // None flagged: all are isolated contacts' particles, already followed.
+  for (std::size_t t = 0; flagged_count_ > 0 && t < touched_.size(); ++t) {
+    const std::uint32_t i = touched_[t];
+    // Unflagged: an isolated contact's particle.
     if (!touched_flag_[i] || mixed_stamp_[i] == stamp_) continue;
     const Vec3 move = scale * (v.col(i) - initial_velocity_.col(i));
     x.col(i) += move;

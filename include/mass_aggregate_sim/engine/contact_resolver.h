@@ -99,6 +99,7 @@ class ContactResolver {
   void touch(const std::uint32_t i) {
     if (touched_flag_[i]) return;
     touched_flag_[i] = 1;
+    ++flagged_count_;
     touched_.push_back(i);
   }
   // Keeps v_i before its first warm start or impulse (targets and the follow are measured on it).
@@ -174,6 +175,7 @@ class ContactResolver {
   Real follow_scale_ = 0.0;  // beta h of the last resolve()
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
+  std::size_t flagged_count_ = 0;  // particles of touched_ with a touched_flag_ (met by a row)
   std::vector<std::uint32_t> touched_;
 };
 
