@@ -74,7 +74,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
-                              ContactStats& stats) {
+                              ContactStats& stats, const bool find_isolated) {
   // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
   if (flagged_count_ > 0) {
     for (const std::uint32_t i : touched_) {
@@ -94,7 +94,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
 
-  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop);
+  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop, find_isolated);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
@@ -112,9 +112,12 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
 
 void ContactResolver::countParticleUses(const std::vector<Contact>& contacts) {
   const std::uint64_t once = std::uint64_t{stamp_} << 1;
+  any_shared_ = false;
   const auto use = [&](const std::uint32_t i) {
     std::uint64_t& u = uses_[i];
-    u = u == once || u == (once | 1) ? (once | 1) : once;
+    const bool seen = u == once || u == (once | 1);
+    any_shared_ = any_shared_ || seen;
+    u = seen ? (once | 1) : once;
   };
   for (const Contact& c : contacts) {
     use(c.a);
@@ -272,7 +275,7 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
 void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
-                              const Real slop) {
+                              const Real slop, const bool find_isolated) {
   const std::size_t count = contacts.size();
   const std::size_t n = static_cast<std::size_t>(v.cols());
   if (mixed_stamp_.size() != n || ++stamp_ == 0) {
@@ -282,7 +285,23 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     stamp_ = 1;
   }
   if (static_cast<std::size_t>(initial_velocity_.cols()) != n) initial_velocity_.resize(3, n);
-  countParticleUses(contacts);
+  if (find_isolated) {
+    countParticleUses(contacts);
+  } else {
+    any_shared_ = true;  // not looked for: every contact is a row
+  }
+  // With particles shared by several contacts (a pile) most contacts become rows: then |a| of
+  // every particle in one vectorised loop and one copy of all velocities cost less than doing it
+  // per row; otherwise (a few rows among isolated contacts) per row particle.
+  rows_dense_ = any_shared_;
+  if (rows_dense_) {
+    acceleration_norm_.resize(acceleration.cols());
+    for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
+      acceleration_norm_[i] = acceleration.col(i).squaredNorm();
+    }
+    acceleration_norm_ = acceleration_norm_.array().sqrt();  // contiguous: packet square roots
+    initial_velocity_ = v;
+  }
   any_mixed_ = false;
   // Never shrunk: growing back would value-initialise every row again.
   if (rows_.size() < count) {
@@ -310,7 +329,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
                                      ? static_cast<std::ptrdiff_t>(cursor++)
                                      : findWarm(c.key, cursor);
-    if (c.kind == ContactKind::kContact && !isShared(c.a) && !(b && isShared(c.b))) {
+    if (find_isolated && c.kind == ContactKind::kContact && !isShared(c.a) &&
+        !(b && isShared(c.b))) {
       ++isolated_count_;
       const bool warm_friction = found >= 0 && !warm_friction_.empty();
       const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
@@ -336,10 +356,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     const Real wb = b ? inverse_mass[c.b] : 0.0;
     Real w_sum = wa + wb;
     Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
-    Real acceleration_bound = wa > 0.0 ? std::sqrt(acceleration.col(c.a).squaredNorm()) : 0.0;
+    Real acceleration_bound = wa > 0.0 ? accelerationNorm(acceleration, c.a) : 0.0;
     if (b && wb > 0.0) {
       relative_acceleration -= acceleration.col(c.b);
-      acceleration_bound += std::sqrt(acceleration.col(c.b).squaredNorm());
+      acceleration_bound += accelerationNorm(acceleration, c.b);
     }
     if (c.kind != ContactKind::kContact) {
       Vec3 normal;

@@ -217,8 +217,9 @@ TEST(IsolatedContactClassification, PairsAndLinksShareTheirParticles) {
   EXPECT_EQ(run.resolver.isolatedContacts(), 0u);
 }
 
-// A mix: a lone ball beside two touching balls (particle collisions on) moves exactly as the
-// same ball alone; the pair keeps its own motion.
+// A lone ball moves as when alone beside a stack of two (particle collisions on): with particle
+// pairs the world resolves every contact as a row (isolated ones are looked for only when all
+// contacts are with colliders), alone its contact is isolated.
 TEST(IsolatedContactMix, LoneBallBesideAPairMovesAsWhenAlone) {
   const auto make = [](const bool with_pair) {
     WorldConfig config;

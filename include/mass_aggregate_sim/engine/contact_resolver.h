@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -46,10 +47,13 @@ class ContactResolver {
   // if those impulses had been forces inside the step: a resting particle then ends where it
   // started instead of sinking by beta g h^2 for the position passes to push back up.
   // links: the geometry of link constraints, by Contact::link.
+  // find_isolated: look for isolated contacts (a pass counting each particle's contacts); false
+  // makes every contact a row (cheaper where few are isolated, as in a pile).
   void resolve(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links, Vec3Map x,
                Vec3Map v, const ConstScalarMap& inverse_mass,
                const Eigen::Ref<const Vec3Array>& acceleration, Real h,
-               const CollisionSettings& settings, Real position_weight, ContactStats& stats);
+               const CollisionSettings& settings, Real position_weight, ContactStats& stats,
+               bool find_isolated = true);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // How many contacts of the last resolve() were isolated (solved in the set-up pass).
@@ -104,11 +108,16 @@ class ContactResolver {
   }
   // Keeps v_i before its first warm start or impulse (targets and the follow are measured on it).
   void keepInitialVelocity(const std::uint32_t i, const Vec3Map& v) {
-    if (initial_stamp_[i] == stamp_) return;
+    if (rows_dense_ || initial_stamp_[i] == stamp_) return;  // dense: all copied
     initial_stamp_[i] = stamp_;
     initial_velocity_.col(i) = v.col(i);
   }
-  // Marks which particles take part in more than one contact (see isShared()).
+  // |a_i|: from the table when rows_dense_ (the same value: both are correctly rounded).
+  Real accelerationNorm(const Eigen::Ref<const Vec3Array>& acceleration,
+                        const std::uint32_t i) const {
+    return rows_dense_ ? acceleration_norm_[i] : std::sqrt(acceleration.col(i).squaredNorm());
+  }
+  // Marks which particles take part in more than one contact (see isShared()), any_shared_.
   void countParticleUses(const std::vector<Contact>& contacts);
   bool isShared(const std::uint32_t i) const { return uses_[i] != (std::uint64_t{stamp_} << 1); }
   // Set-up, velocity solve, follow, position correction, warm start kept and stats of contact k,
@@ -123,7 +132,7 @@ class ContactResolver {
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
   void prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h, Real slop);
+               Real h, Real slop, bool find_isolated);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
   // Moves each particle with its resting contacts' impulses (see resolve()).
@@ -144,7 +153,10 @@ class ContactResolver {
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
   // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
   std::vector<std::uint64_t> uses_;
-  Vec3Array initial_velocity_;                // per particle of a row, before the warm starts
+  bool any_shared_ = false;        // some particle is in more than one contact
+  bool rows_dense_ = false;        // |a| and initial velocities of every particle, not per row
+  ScalarArray acceleration_norm_;  // per particle, when rows_dense_
+  Vec3Array initial_velocity_;     // per particle of a row, before the warm starts
   std::vector<std::uint32_t> initial_stamp_;  // per particle: == stamp_ when kept this substep
   // Per particle: == stamp_ when one of its active rows is not a resting contact.
   std::vector<std::uint32_t> mixed_stamp_;
