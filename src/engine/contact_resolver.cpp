@@ -11,6 +11,21 @@ constexpr Real kMinLinkLength = 1e-12;
 
 bool hasB(const Contact& c) { return c.b != kNoParticle; }
 
+// The resting test of one moving particle, closing - built > -2 h |a| with s = |a|^2, decided
+// from the squares when they are clearly apart (rounding moves each side by some 1e-16 of it,
+// far less than the 1e-9 margin), else exactly as the rows do it: the same answer without the
+// square root's latency in the usual case.
+bool restingWithOne(const Real closing_less_built, const Real s, const Real h) {
+  const Real limit_squared = 4.0 * h * h * s;  // (2 h |a|)^2
+  if (limit_squared > 1e-250 && limit_squared < 1e250) {
+    if (closing_less_built >= 0.0) return true;
+    const Real squared = closing_less_built * closing_less_built;
+    if (squared < limit_squared * (1.0 - 1e-9)) return true;
+    if (squared > limit_squared * (1.0 + 1e-9)) return false;
+  }
+  return closing_less_built > -2.0 * std::sqrt(s) * h;
+}
+
 }  // namespace
 
 bool ContactResolver::linkState(const Contact& c, const Vec3Map& x, Vec3& normal,
@@ -59,12 +74,17 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
-                              ContactStats& stats) {
-  for (const std::uint32_t i : touched_) {
-    touched_flag_[i] = 0;
-    displacement_.col(i).setZero();
+                              ContactStats& stats, const bool find_isolated) {
+  // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
+  if (flagged_count_ > 0) {
+    for (const std::uint32_t i : touched_) {
+      if (!touched_flag_[i]) continue;
+      touched_flag_[i] = 0;
+      displacement_.col(i).setZero();
+    }
   }
   touched_.clear();
+  flagged_count_ = 0;
   last_substep_ = h;
   links_ = &links;
   follow_scale_ = h * position_weight;
@@ -74,55 +94,272 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
 
-  prepare(contacts, x, v, inverse_mass, acceleration, h);
+  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop, find_isolated);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
+  // An isolated contact is solved in one velocity pass; a corrected one is measured again, as
+  // the passes would in a second pass.
+  if (isolated_corrected_) {
+    stats.position_iterations =
+        std::max(stats.position_iterations, std::min(2, std::max(1, settings.max_iterations)));
+  }
+  stats.max_penetration = std::max(stats.max_penetration, isolated_max_penetration_);
+  stats.max_closing_velocity = std::max(stats.max_closing_velocity, isolated_max_closing_);
   stats.iterations = stats.velocity_iterations + stats.position_iterations;
   links_ = nullptr;
 }
 
-void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
-                              const ConstScalarMap& inverse_mass,
-                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h) {
-  const std::size_t count = contacts.size();
-  // |a| of every particle in one vectorised loop, not twice per contact in the dependent one.
-  acceleration_norm_.resize(acceleration.cols());
-  for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
-    acceleration_norm_[i] = acceleration.col(i).squaredNorm();
+void ContactResolver::countParticleUses(const std::vector<Contact>& contacts) {
+  const std::uint64_t once = std::uint64_t{stamp_} << 1;
+  any_shared_ = false;
+  const auto use = [&](const std::uint32_t i) {
+    std::uint64_t& u = uses_[i];
+    const bool seen = u == once || u == (once | 1);
+    any_shared_ = any_shared_ || seen;
+    u = seen ? (once | 1) : once;
+  };
+  for (const Contact& c : contacts) {
+    use(c.a);
+    if (hasB(c)) use(c.b);
   }
-  acceleration_norm_ = acceleration_norm_.array().sqrt();  // contiguous: packet square roots
-  // Targets are measured on the velocities before any warm start; the warm starts go into v as
-  // the rows are made.
-  initial_velocity_ = v;
-  if (mixed_stamp_.size() != static_cast<std::size_t>(v.cols()) || ++stamp_ == 0) {
-    mixed_stamp_.assign(static_cast<std::size_t>(v.cols()), 0);
+}
+
+template <bool kWithB>
+void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3Map& x, Vec3Map& v,
+                                    const ConstScalarMap& inverse_mass,
+                                    const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
+                                    const Real slop, const Real previous_impulse,
+                                    const Vec3* const previous_friction) {
+  // The same steps and formulas as prepare(), resolveVelocities(), followRestingImpulses() and
+  // resolvePositions() for one row whose particles nothing else moves. Velocities and moves are
+  // kept in registers and stored once.
+  constexpr bool b = kWithB;
+  const Real wa = inverse_mass[c.a];
+  const Real wb = b ? inverse_mass[c.b] : 0.0;
+  const Real w_sum = wa + wb;
+  next_warm_normal_[k] = 0.0;
+  if (w_sum <= 0.0) return;  // never active, never corrected
+  Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
+  const bool moves_b = b && wb > 0.0;
+  if (moves_b) relative_acceleration -= acceleration.col(c.b);
+  const Vec3 normal = c.normal;
+  const Real penetration = c.penetration;
+  const Vec3 initial_a = v.col(c.a);
+  const Vec3 initial_b = b ? Vec3(v.col(c.b)) : Vec3::Zero();
+  Vec3 va = initial_a;
+  Vec3 vb = initial_b;
+  const Real v_sep = (initial_a - initial_b).dot(normal);
+  const Real built = std::min(Real{0.0}, relative_acceleration.dot(normal) * h);
+  bool resting;
+  if (!moves_b) {
+    // One moving particle: |a_a| alone, as in the rows (a fixed b adds no bound).
+    resting =
+        restingWithOne(v_sep - built, wa > 0.0 ? relative_acceleration.squaredNorm() : 0.0, h);
+  } else {
+    const Real bound = (wa > 0.0 ? std::sqrt(acceleration.col(c.a).squaredNorm()) : 0.0) +
+                       std::sqrt(acceleration.col(c.b).squaredNorm());
+    resting = v_sep - built > -2.0 * bound * h;
+  }
+  // Inactive: a gap closing fast; its depth is negative, below every stat and the slop.
+  if (penetration < 0.0 && !resting) return;
+  const bool friction = c.friction > 0.0;
+  Real target = 0.0;
+  if (resting && follow_scale_ > 0.0) {
+    target = std::min(Real{0.0}, v_sep + penetration / follow_scale_);
+  } else if (penetration < 0.0) {
+    target = penetration / h;
+  } else if (!resting && previous_impulse <= 0.0) {
+    Real in_contact = 1.0;
+    if (v_sep < 0.0) in_contact = std::clamp(penetration / (-v_sep * h), Real{0.0}, Real{1.0});
+    target = -c.restitution * std::min(Real{0.0}, v_sep - built * in_contact);
+  }
+  Real total = std::max(Real{0.0}, previous_impulse);
+  Vec3 friction_total = Vec3::Zero();
+  if (friction && previous_friction) {
+    friction_total = *previous_friction - previous_friction->dot(normal) * normal;
+    const Real limit = c.friction * total;
+    const Real magnitude = friction_total.norm();
+    if (magnitude > limit) friction_total *= limit / magnitude;
+  }
+  bool touched_a = false;
+  bool touched_b = false;
+  if (total != 0.0) {
+    const Vec3 impulse = friction ? Vec3(total * normal + friction_total) : Vec3(total * normal);
+    va += wa * impulse;
+    touched_a = true;
+    if (b) {
+      vb -= wb * impulse;
+      touched_b = true;
+    }
+  }
+  // One Gauss-Seidel pass: exact for a lone row.
+  const Real next = std::max(Real{0.0}, total + (target - (va - vb).dot(normal)) / w_sum);
+  const Real j = next - total;
+  total = next;
+  if (j != 0.0) {
+    va += (j * wa) * normal;
+    if (b) vb -= (j * wb) * normal;
+    touched_a = touched_a || wa > 0.0;
+    touched_b = touched_b || (b && wb > 0.0);
+  }
+  if (friction) {
+    Vec3 slip = va - vb;
+    slip -= slip.dot(normal) * normal;
+    Vec3 friction_next = friction_total - slip / w_sum;
+    const Real limit = c.friction * total;
+    const Real magnitude = friction_next.norm();
+    if (magnitude > limit) friction_next *= limit / magnitude;
+    const Vec3 change = friction_next - friction_total;
+    friction_total = friction_next;
+    va += wa * change;
+    if (b) vb -= wb * change;
+  }
+  // Follow: dx = beta h (v - v_initial) for a resting contact's particles.
+  // move_*: the particle's whole displacement, x_*: its position after each move in turn.
+  Vec3 move_a = Vec3::Zero();
+  Vec3 move_b = Vec3::Zero();
+  Vec3 xa = x.col(c.a);
+  Vec3 xb = b ? Vec3(x.col(c.b)) : Vec3::Zero();
+  if (resting && follow_scale_ > 0.0) {
+    if (touched_a) {
+      move_a = follow_scale_ * (va - initial_a);
+      xa += move_a;
+    }
+    if (touched_b) {
+      move_b = follow_scale_ * (vb - initial_b);
+      xb += move_b;
+    }
+  }
+  // Keep the impulses for the next substep; measure the closing speed left.
+  next_warm_normal_[k] = total;
+  if (friction && total != 0.0) {
+    if (next_warm_friction_.empty())
+      next_warm_friction_.assign(next_warm_key_.size(), Vec3::Zero());
+    next_warm_friction_[k] = friction_total;
+  }
+  any_friction_ = any_friction_ || friction;
+  // min(0, p / h) - v_sep, without the division when p >= 0 (same value).
+  const Real allowed = penetration < 0.0 ? penetration / h : 0.0;
+  isolated_max_closing_ = std::max(isolated_max_closing_, allowed - (va - vb).dot(normal));
+  // Position: overlap beyond the slop down to half the slop, dp_a = w_a / (w_a + w_b) d n.
+  Real depth = penetration - (move_a - move_b).dot(normal);
+  if (depth > slop) {
+    const Real correction = depth - 0.5 * slop;
+    const Vec3 correction_a = (correction * wa / w_sum) * normal;
+    xa += correction_a;
+    move_a += correction_a;
+    touched_a = touched_a || wa > 0.0;
+    if (b) {
+      const Vec3 correction_b = (-correction * wb / w_sum) * normal;
+      xb += correction_b;
+      move_b += correction_b;
+      touched_b = touched_b || wb > 0.0;
+    }
+    depth = penetration - (move_a - move_b).dot(normal);
+    isolated_corrected_ = true;
+  }
+  isolated_max_penetration_ = std::max(isolated_max_penetration_, depth);
+  if (touched_a) {
+    v.col(c.a) = va;
+    x.col(c.a) = xa;
+    touched_.push_back(c.a);
+  }
+  if (touched_b) {
+    v.col(c.b) = vb;
+    x.col(c.b) = xb;
+    touched_.push_back(c.b);
+  }
+}
+
+void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+                              const ConstScalarMap& inverse_mass,
+                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
+                              const Real slop, const bool find_isolated) {
+  const std::size_t count = contacts.size();
+  const std::size_t n = static_cast<std::size_t>(v.cols());
+  if (mixed_stamp_.size() != n || ++stamp_ == 0) {
+    mixed_stamp_.assign(n, 0);
+    initial_stamp_.assign(n, 0);
+    uses_.assign(n, 0);
     stamp_ = 1;
   }
+  if (static_cast<std::size_t>(initial_velocity_.cols()) != n) initial_velocity_.resize(3, n);
+  if (find_isolated) {
+    countParticleUses(contacts);
+  } else {
+    any_shared_ = true;  // not looked for: every contact is a row
+  }
+  // With particles shared by several contacts (a pile) most contacts become rows: then |a| of
+  // every particle in one vectorised loop and one copy of all velocities cost less than doing it
+  // per row; otherwise (a few rows among isolated contacts) per row particle.
+  rows_dense_ = any_shared_;
+  if (rows_dense_) {
+    acceleration_norm_.resize(acceleration.cols());
+    for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
+      acceleration_norm_[i] = acceleration.col(i).squaredNorm();
+    }
+    acceleration_norm_ = acceleration_norm_.array().sqrt();  // contiguous: packet square roots
+    initial_velocity_ = v;
+  }
   any_mixed_ = false;
-  rows_.resize(count);
+  // Never shrunk: growing back would value-initialise every row again.
+  if (rows_.size() < count) {
+    rows_.resize(count);
+    row_contact_.resize(count);
+  }
   penetration_.resize(count);
   friction_coefficient_.resize(count);
   friction_total_.resize(count);
   next_warm_key_.resize(count);
   next_warm_normal_.resize(count);
+  next_warm_friction_.clear();
   any_friction_ = false;
+  isolated_count_ = 0;
+  isolated_max_penetration_ = 0.0;
+  isolated_max_closing_ = 0.0;
+  isolated_corrected_ = false;
   std::size_t cursor = 0;
+  std::size_t r = 0;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];
-    Row& row = rows_[k];
     const bool b = hasB(c);
+    next_warm_key_[k] = c.key;
+    // Inline the usual case: the entry at the cursor.
+    const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
+                                     ? static_cast<std::ptrdiff_t>(cursor++)
+                                     : findWarm(c.key, cursor);
+    if (find_isolated && c.kind == ContactKind::kContact && !isShared(c.a) &&
+        !(b && isShared(c.b))) {
+      ++isolated_count_;
+      const bool warm_friction = found >= 0 && !warm_friction_.empty();
+      const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
+      const Vec3* const previous_friction = warm_friction ? &warm_friction_[found] : nullptr;
+      if (b) {
+        solveIsolated<true>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+                            previous_friction);
+      } else {
+        solveIsolated<false>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+                             previous_friction);
+      }
+      continue;
+    }
+    const std::size_t row_index = r++;
+    Row& row = rows_[row_index];
+    row_contact_[row_index] = static_cast<std::uint32_t>(k);
     row.a = c.a;
     row.b = b ? c.b : c.a;
     row.kind = c.kind;
+    keepInitialVelocity(c.a, v);
+    if (b) keepInitialVelocity(c.b, v);
     const Real wa = inverse_mass[c.a];
     const Real wb = b ? inverse_mass[c.b] : 0.0;
     Real w_sum = wa + wb;
     Vec3 relative_acceleration = wa > 0.0 ? Vec3(acceleration.col(c.a)) : Vec3::Zero();
-    Real acceleration_bound = wa > 0.0 ? acceleration_norm_[c.a] : 0.0;
+    Real acceleration_bound = wa > 0.0 ? accelerationNorm(acceleration, c.a) : 0.0;
     if (b && wb > 0.0) {
       relative_acceleration -= acceleration.col(c.b);
-      acceleration_bound += acceleration_norm_[c.b];
+      acceleration_bound += accelerationNorm(acceleration, c.b);
     }
     if (c.kind != ContactKind::kContact) {
       Vec3 normal;
@@ -136,7 +373,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     }
     row.normal = c.normal;
     row.inverse_mass_sum = w_sum;
-    penetration_[k] = c.penetration;
+    penetration_[row_index] = c.penetration;
+    // Targets are measured on the velocities before any warm start.
     Vec3 relative_velocity = initial_velocity_.col(c.a);
     if (b) relative_velocity -= initial_velocity_.col(c.b);
     const Real v_sep = relative_velocity.dot(c.normal);
@@ -155,7 +393,6 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     row.flags = static_cast<std::uint8_t>((b ? kHasB : 0) | (active ? kActive : 0) |
                                           (resting ? kResting : 0) | (friction ? kFriction : 0) |
                                           (c.kind != ContactKind::kRod ? kUnilateral : 0));
-    next_warm_key_[k] = c.key;
     if (active && !(c.kind == ContactKind::kContact && resting)) {
       // Moves with more than resting contacts' impulses: followed row by row.
       mixed_stamp_[c.a] = stamp_;
@@ -167,13 +404,9 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
     row.total = 0.0;
     row.target = 0.0;
     if (friction) {
-      friction_coefficient_[k] = c.friction;
-      friction_total_[k].setZero();
+      friction_coefficient_[row_index] = c.friction;
+      friction_total_[row_index].setZero();
     }
-    // Inline the usual case: the entry at the cursor.
-    const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
-                                     ? static_cast<std::ptrdiff_t>(cursor++)
-                                     : findWarm(c.key, cursor);
     if (!active) continue;
     const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
     // Targets are fixed from the velocities before any impulse (the total impulse is what the
@@ -203,12 +436,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       const Real limit = c.friction * row.total;
       const Real magnitude = friction_impulse.norm();
       if (magnitude > limit) friction_impulse *= limit / magnitude;
-      friction_total_[k] = friction_impulse;
+      friction_total_[row_index] = friction_impulse;
     }
     // Warm start: each constraint begins with the impulse it ended the last substep with.
     if (row.total == 0.0) continue;
-    const Vec3 impulse =
-        friction ? Vec3(row.total * row.normal + friction_total_[k]) : Vec3(row.total * row.normal);
+    const Vec3 impulse = friction ? Vec3(row.total * row.normal + friction_total_[row_index])
+                                  : Vec3(row.total * row.normal);
     v.col(row.a) += wa * impulse;
     touch(row.a);
     if (b) {
@@ -216,11 +449,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const Vec3Map& x, 
       touch(row.b);
     }
   }
+  row_count_ = r;
 }
 
 int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                                        const CollisionSettings& settings) {
-  const std::size_t count = rows_.size();
+  const std::size_t count = row_count_;
   int passes = 0;
   while (passes < settings.max_iterations) {
     ++passes;
@@ -278,15 +512,18 @@ void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
   // dx = beta h w J: the move the integrator would have made had the impulses been in the step.
   // A particle whose active rows are all resting contacts changed velocity by exactly those
   // impulses: dx = beta h (v - v_initial).
-  for (const std::uint32_t i : touched_) {
-    if (mixed_stamp_[i] == stamp_) continue;
+  // None flagged: all are isolated contacts' particles, already followed.
+  for (std::size_t t = 0; flagged_count_ > 0 && t < touched_.size(); ++t) {
+    const std::uint32_t i = touched_[t];
+    // Unflagged: an isolated contact's particle.
+    if (!touched_flag_[i] || mixed_stamp_[i] == stamp_) continue;
     const Vec3 move = scale * (v.col(i) - initial_velocity_.col(i));
     x.col(i) += move;
     displacement_.col(i) += move;
   }
   if (!any_mixed_) return;
   // The others (also hit, linked or in a gap) follow their resting contacts' impulses one by one.
-  for (std::size_t k = 0; k < rows_.size(); ++k) {
+  for (std::size_t k = 0; k < row_count_; ++k) {
     const Row& row = rows_[k];
     if (!(row.flags & kActive) || row.kind != ContactKind::kContact || !(row.flags & kResting)) {
       continue;
@@ -310,11 +547,15 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
                                       const Vec3Map& v, const ConstScalarMap& inverse_mass,
                                       const Real h, const CollisionSettings& settings,
                                       ContactStats& stats) {
-  const std::size_t count = rows_.size();
+  const std::size_t count = row_count_;
   const Real slop = settings.penetration_slop;
   Real& max_penetration = stats.max_penetration;
   Real max_closing = 0.0;
-  next_warm_friction_.resize(any_friction_ ? count : 0);
+  if (!any_friction_) {
+    next_warm_friction_.clear();
+  } else if (next_warm_friction_.empty()) {
+    next_warm_friction_.assign(next_warm_key_.size(), Vec3::Zero());
+  }
   int passes = 0;
   bool corrected = true;
   while (corrected && passes < settings.max_iterations) {
@@ -330,9 +571,10 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
         // Velocities and impulses are final: keep the impulses for the next substep (in contact
         // order) and measure the closing speed left.
         const bool keep = (row.flags & kActive) && row.total != 0.0;
-        next_warm_normal_[k] = keep ? row.total : 0.0;
+        const std::size_t contact = row_contact_[k];
+        next_warm_normal_[contact] = keep ? row.total : 0.0;
         if (any_friction_) {
-          next_warm_friction_[k] =
+          next_warm_friction_[contact] =
               keep && (row.flags & kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
         }
         if (row.flags & kActive) {
@@ -359,10 +601,11 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
         correction = depth - 0.5 * slop;
       } else {
         Real error;
-        if (!linkState(contacts[k], x, normal, error)) continue;
+        const Contact& link = contacts[row_contact_[k]];
+        if (!linkState(link, x, normal, error)) continue;
         max_penetration =
             std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
-        const Real allowed = settings.rod_tolerance * (*links_)[contacts[k].link].length;
+        const Real allowed = settings.rod_tolerance * (*links_)[link.link].length;
         if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
           continue;
         }
@@ -402,7 +645,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
       } else {
         Vec3 normal;
         Real error;
-        if (!linkState(contacts[k], x, normal, error)) continue;
+        if (!linkState(contacts[row_contact_[k]], x, normal, error)) continue;
         max_penetration =
             std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
       }

@@ -702,9 +702,15 @@ void World::resolveContacts(const Real h) {
     }
   }
 
+  // Isolated contacts are looked for when all contacts are with colliders (most are then
+  // isolated: a particle meets two colliders only in a corner); with particle pairs or links
+  // few are, and the count would cost more than it saves.
+  const bool only_collider_contacts =
+      ws.links.empty() && (!settings.particle_collisions || ws.pairs.empty());
   ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
                       particles_.inverseMasses(), acceleration_, h, settings,
-                      positionWeight(config_.integrator), last_contact_stats_);
+                      positionWeight(config_.integrator), last_contact_stats_,
+                      only_collider_contacts);
   last_contact_stats_.contacts = ws.contacts.size();
   last_contact_stats_.dropped = dropped_this_step_;
 

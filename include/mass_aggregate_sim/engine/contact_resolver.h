@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -32,6 +33,11 @@ namespace engine {
 // Position pass, per contact: overlap beyond the slop is removed down to half the slop, moving a
 // and b by w_a/(w_a+w_b) and w_b/(w_a+w_b) of it (dp_a = m_b/(m_a+m_b) d n). Links are recomputed
 // from the current positions and corrected to their exact length.
+//
+// Isolated contacts (a contact, not a link, whose particles are in no other constraint of the
+// substep: a ball on the ground) take all of these steps at once in the set-up pass, with the same
+// formulas: a lone row's Gauss-Seidel converges in one pass, and nothing else moves its particles.
+// Only the others go through the passes above.
 class ContactResolver {
  public:
   // acceleration: each particle's acceleration over the last substep of length h.
@@ -41,12 +47,17 @@ class ContactResolver {
   // if those impulses had been forces inside the step: a resting particle then ends where it
   // started instead of sinking by beta g h^2 for the position passes to push back up.
   // links: the geometry of link constraints, by Contact::link.
+  // find_isolated: look for isolated contacts (a pass counting each particle's contacts); false
+  // makes every contact a row (cheaper where few are isolated, as in a pile).
   void resolve(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links, Vec3Map x,
                Vec3Map v, const ConstScalarMap& inverse_mass,
                const Eigen::Ref<const Vec3Array>& acceleration, Real h,
-               const CollisionSettings& settings, Real position_weight, ContactStats& stats);
+               const CollisionSettings& settings, Real position_weight, ContactStats& stats,
+               bool find_isolated = true);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
+  // How many contacts of the last resolve() were isolated (solved in the set-up pass).
+  std::size_t isolatedContacts() const { return isolated_count_; }
   // Forgets the impulses kept for warm starting (a removed particle's slot may be reused).
   void clearWarmStart() {
     warm_key_.clear();
@@ -92,13 +103,36 @@ class ContactResolver {
   void touch(const std::uint32_t i) {
     if (touched_flag_[i]) return;
     touched_flag_[i] = 1;
+    ++flagged_count_;
     touched_.push_back(i);
   }
+  // Keeps v_i before its first warm start or impulse (targets and the follow are measured on it).
+  void keepInitialVelocity(const std::uint32_t i, const Vec3Map& v) {
+    if (rows_dense_ || initial_stamp_[i] == stamp_) return;  // dense: all copied
+    initial_stamp_[i] = stamp_;
+    initial_velocity_.col(i) = v.col(i);
+  }
+  // |a_i|: from the table when rows_dense_ (the same value: both are correctly rounded).
+  Real accelerationNorm(const Eigen::Ref<const Vec3Array>& acceleration,
+                        const std::uint32_t i) const {
+    return rows_dense_ ? acceleration_norm_[i] : std::sqrt(acceleration.col(i).squaredNorm());
+  }
+  // Marks which particles take part in more than one contact (see isShared()), any_shared_.
+  void countParticleUses(const std::vector<Contact>& contacts);
+  bool isShared(const std::uint32_t i) const { return uses_[i] != (std::uint64_t{stamp_} << 1); }
+  // Set-up, velocity solve, follow, position correction, warm start kept and stats of contact k,
+  // whose particles are in no other constraint. `previous_impulse` / `previous_friction` (may be
+  // null): its warm start.
+  template <bool kWithB>
+  void solveIsolated(std::size_t k, const Contact& c, Vec3Map& x, Vec3Map& v,
+                     const ConstScalarMap& inverse_mass,
+                     const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
+                     Real previous_impulse, const Vec3* previous_friction);
   // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
-  void prepare(std::vector<Contact>& contacts, const Vec3Map& x, Vec3Map& v,
+  void prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h);
+               Real h, Real slop, bool find_isolated);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
   // Moves each particle with its resting contacts' impulses (see resolve()).
@@ -114,13 +148,26 @@ class ContactResolver {
 
   const std::vector<LinkGeometry>* links_ = nullptr;  // during resolve()
 
-  std::vector<Row> rows_;
-  ScalarArray acceleration_norm_;  // per particle
-  Vec3Array initial_velocity_;     // per particle, before the warm starts
+  std::vector<Row> rows_;  // the constraints that are not isolated: [0, row_count_)
+  std::size_t row_count_ = 0;
+  std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
+  // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
+  std::vector<std::uint64_t> uses_;
+  bool any_shared_ = false;        // some particle is in more than one contact
+  bool rows_dense_ = false;        // |a| and initial velocities of every particle, not per row
+  ScalarArray acceleration_norm_;  // per particle, when rows_dense_
+  Vec3Array initial_velocity_;     // per particle of a row, before the warm starts
+  std::vector<std::uint32_t> initial_stamp_;  // per particle: == stamp_ when kept this substep
   // Per particle: == stamp_ when one of its active rows is not a resting contact.
   std::vector<std::uint32_t> mixed_stamp_;
   std::uint32_t stamp_ = 0;
   bool any_mixed_ = false;
+  // The isolated contacts' share of the stats (their particles are in touched_ without a
+  // touched_flag_ or a displacement_ entry: no row meets them).
+  std::size_t isolated_count_ = 0;
+  Real isolated_max_penetration_ = 0.0;
+  Real isolated_max_closing_ = 0.0;
+  bool isolated_corrected_ = false;
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
@@ -140,6 +187,7 @@ class ContactResolver {
   Real follow_scale_ = 0.0;  // beta h of the last resolve()
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
+  std::size_t flagged_count_ = 0;  // particles of touched_ with a touched_flag_ (met by a row)
   std::vector<std::uint32_t> touched_;
 };
 
