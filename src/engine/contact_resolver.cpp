@@ -194,7 +194,8 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
     }
   }
   // One Gauss-Seidel pass: exact for a lone row.
-  const Real next = std::max(Real{0.0}, total + (target - (va - vb).dot(normal)) / w_sum);
+  const Real effective_mass = 1.0 / w_sum;
+  const Real next = std::max(Real{0.0}, total + (target - (va - vb).dot(normal)) * effective_mass);
   const Real j = next - total;
   total = next;
   if (j != 0.0) {
@@ -206,7 +207,7 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
   if (friction) {
     Vec3 slip = va - vb;
     slip -= slip.dot(normal) * normal;
-    Vec3 friction_next = friction_total - slip / w_sum;
+    Vec3 friction_next = friction_total - slip * effective_mass;
     const Real limit = c.friction * total;
     const Real magnitude = friction_next.norm();
     if (magnitude > limit) friction_next *= limit / magnitude;
@@ -467,13 +468,16 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
       if (!(row.flags & kActive)) continue;
       const bool b = row.flags & kHasB;
       const Real w_sum = row.inverse_mass_sum;
+      // Depends on the row only, so it is computed ahead of the chain of velocity updates from
+      // row to row, which then multiplies instead of dividing.
+      const Real effective_mass = 1.0 / w_sum;
       const Real wa = inverse_mass[row.a];
       const Real wb = b ? inverse_mass[row.b] : 0.0;
       Vec3 relative = v.col(row.a);
       if (b) relative -= v.col(row.b);
       // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
       // together / push apart in total, rods act either way.
-      Real total = row.total + (row.target - relative.dot(row.normal)) / w_sum;
+      Real total = row.total + (row.target - relative.dot(row.normal)) * effective_mass;
       if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
       const Real j = total - row.total;
       row.total = total;
@@ -489,7 +493,7 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
         Vec3 slip = v.col(row.a);
         if (b) slip -= v.col(row.b);
         slip -= slip.dot(row.normal) * row.normal;
-        Vec3 friction = friction_total_[k] - slip / w_sum;
+        Vec3 friction = friction_total_[k] - slip * effective_mass;
         const Real limit = friction_coefficient_[k] * row.total;
         const Real magnitude = friction.norm();
         if (magnitude > limit) friction *= limit / magnitude;
