@@ -88,6 +88,8 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
   last_substep_ = h;
   links_ = &links;
   follow_scale_ = h * position_weight;
+  // Once per substep, so each resting contact multiplies instead of dividing.
+  inverse_follow_scale_ = follow_scale_ > 0.0 ? 1.0 / follow_scale_ : 0.0;
   const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
     displacement_.setZero(3, n);
@@ -166,7 +168,7 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
   const bool friction = c.friction > 0.0;
   Real target = 0.0;
   if (resting && follow_scale_ > 0.0) {
-    target = std::min(Real{0.0}, v_sep + penetration / follow_scale_);
+    target = std::min(Real{0.0}, v_sep + penetration * inverse_follow_scale_);
   } else if (penetration < 0.0) {
     target = penetration / h;
   } else if (!resting && previous_impulse <= 0.0) {
@@ -417,7 +419,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
       // A resting contact moves by beta h (v''_sep - v'_sep) after this phase, which leaves the
       // overlap p - beta h (v''_sep - v'_sep): aim at touching when that is within reach, never
       // at pushing apart (overlap beyond the slop is the position passes' work).
-      row.target = std::min(Real{0.0}, v_sep + c.penetration / follow_scale_);
+      row.target = std::min(Real{0.0}, v_sep + c.penetration * inverse_follow_scale_);
     } else if (c.kind != ContactKind::kRod && c.penetration < 0.0) {
       // A gap g may close at up to g / h within the substep, no faster.
       row.target = c.penetration / h;

@@ -185,6 +185,7 @@ class ContactResolver {
   mutable std::vector<std::pair<std::uint64_t, std::uint32_t>> warm_by_key_;
   Real last_substep_ = 0.0;
   Real follow_scale_ = 0.0;  // beta h of the last resolve()
+  Real inverse_follow_scale_ = 0.0;
   Vec3Array displacement_;
   std::vector<std::uint8_t> touched_flag_;
   std::size_t flagged_count_ = 0;  // particles of touched_ with a touched_flag_ (met by a row)
