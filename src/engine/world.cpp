@@ -6,6 +6,7 @@
 
 #include "mass_aggregate_sim/engine/contact_workspace.h"
 #include "mass_aggregate_sim/engine/energy_accumulator.h"
+#include "mass_aggregate_sim/engine/finite_check.h"
 #include "mass_aggregate_sim/engine/force_evaluation.h"
 #include "mass_aggregate_sim/engine/implicit_euler.h"
 #include "mass_aggregate_sim/engine/state_hash.h"
@@ -490,8 +491,7 @@ void World::substep(const Real h) {
 void World::detectDivergence() {
   const auto x = particles_.positions();
   const auto v = particles_.velocities();
-  // 0 * value is 0 for every finite value and NaN for Inf or NaN: one vectorised pass.
-  if ((x.array() * 0.0).sum() + (v.array() * 0.0).sum() == 0.0) return;
+  if (allFinite(x.data(), v.data(), 3 * particles_.size())) return;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {
