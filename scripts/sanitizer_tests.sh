@@ -10,6 +10,10 @@ mas_build_in "${asan_ws}" -DCMAKE_BUILD_TYPE=Debug -DMAS_BUILD_BENCHMARKS=OFF \
   "-DCMAKE_CXX_FLAGS=${flags}" "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined" \
   "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined" -- all tests
 mkdir -p "${out_dir}"
+# The sanitized binaries must load the sanitized libraries: an environment that sourced the normal
+# workspace (test.sh's first stage) puts its devel/lib on LD_LIBRARY_PATH, which outranks the
+# binaries' run path.
+export LD_LIBRARY_PATH="${asan_ws}/devel/lib${LD_LIBRARY_PATH:+:${LD_LIBRARY_PATH}}"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=${REPO_DIR}/test/sanitizers/lsan.supp:print_suppressions=0"
@@ -17,6 +21,18 @@ status=0
 for binary in "${asan_ws}"/devel/lib/mass_aggregate_sim/*_tests; do
   [ -x "${binary}" ] || continue
   name="$(basename "${binary}")"
+  engine_library="$(ldd "${binary}" | awk '/libmass_aggregate_sim_engine/ {print $3}')"
+  if [ "${engine_library#"${asan_ws}"/}" = "${engine_library}" ]; then
+    message="${name} would load ${engine_library}, not the sanitized engine in ${asan_ws}"
+    echo "${message}" >&2
+    status=1
+    cat >"${out_dir}/asan-${name}.xml" <<XML
+<testsuite name="asan-${name}" tests="1" failures="1" errors="0">
+  <testcase classname="sanitizers" name="${name}"><failure message="${message}"/></testcase>
+</testsuite>
+XML
+    continue
+  fi
   echo "== ${name} under ASan+UBSan"
   if ! "${binary}" --gtest_output="xml:${out_dir}/asan-${name}.xml" >"${asan_ws}/${name}.log" 2>&1; then
     status=1
