@@ -76,3 +76,13 @@ mas_build() {
   source "${WS_DIR}/devel/setup.bash"
   set -u
 }
+
+# mas_failure_xml FILE SUITE CLASS NAME MESSAGE: a JUnit file with one failed test case, for a
+# stage that could not produce its own (build failure, crash), so the closing count sees it.
+mas_failure_xml() {
+  cat >"$1" <<XML
+<testsuite name="$2" tests="1" failures="1" errors="0">
+  <testcase classname="$3" name="$4"><failure message="$5"/></testcase>
+</testsuite>
+XML
+}

@@ -35,11 +35,8 @@ for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
     tail -n 30 "${fuzz_dir}/${target}.build.log"
     echo "fuzz target ${target} failed to build" >&2
     status=1
-    cat >"${out_dir}/fuzz-${target}.xml" <<XML
-<testsuite name="fuzz" tests="1" failures="1" errors="0">
-  <testcase classname="fuzz" name="${target}"><failure message="build failed: see ${fuzz_dir}/${target}.build.log"/></testcase>
-</testsuite>
-XML
+    mas_failure_xml "${out_dir}/fuzz-${target}.xml" fuzz fuzz "${target}" \
+      "build failed: see ${fuzz_dir}/${target}.build.log"
     continue
   }
   work_corpus="${fuzz_dir}/${corpus_name}"
@@ -62,11 +59,8 @@ XML
   else
     status=1
     tail -n 40 "${log}"
-    cat >"${out_dir}/fuzz-${target}.xml" <<XML
-<testsuite name="fuzz" tests="1" failures="1" errors="0">
-  <testcase classname="fuzz" name="${target}"><failure message="crash or broken promise: see ${log}"/></testcase>
-</testsuite>
-XML
+    mas_failure_xml "${out_dir}/fuzz-${target}.xml" fuzz fuzz "${target}" \
+      "crash or broken promise: see ${log}"
   fi
 done
 exit "${status}"

@@ -26,11 +26,7 @@ for binary in "${asan_ws}"/devel/lib/mass_aggregate_sim/*_tests; do
     message="${name} would load ${engine_library}, not the sanitized engine in ${asan_ws}"
     echo "${message}" >&2
     status=1
-    cat >"${out_dir}/asan-${name}.xml" <<XML
-<testsuite name="asan-${name}" tests="1" failures="1" errors="0">
-  <testcase classname="sanitizers" name="${name}"><failure message="${message}"/></testcase>
-</testsuite>
-XML
+    mas_failure_xml "${out_dir}/asan-${name}.xml" "asan-${name}" sanitizers "${name}" "${message}"
     continue
   fi
   echo "== ${name} under ASan+UBSan"
@@ -39,11 +35,8 @@ XML
     tail -n 40 "${asan_ws}/${name}.log"
     # A sanitizer abort leaves no XML: record the failure so the count sees it.
     if [ ! -s "${out_dir}/asan-${name}.xml" ]; then
-      cat >"${out_dir}/asan-${name}.xml" <<XML
-<testsuite name="asan-${name}" tests="1" failures="1" errors="0">
-  <testcase classname="sanitizers" name="${name}"><failure message="sanitizer or crash: see ${asan_ws}/${name}.log"/></testcase>
-</testsuite>
-XML
+      mas_failure_xml "${out_dir}/asan-${name}.xml" "asan-${name}" sanitizers "${name}" \
+        "sanitizer or crash: see ${asan_ws}/${name}.log"
     fi
   fi
   grep -E "^\[  (PASSED|FAILED) " "${asan_ws}/${name}.log" || true

@@ -92,6 +92,30 @@ TEST(StepCache, EnergyGuardDoesNotChangeTheMotion) {
   EXPECT_EQ(plain.divergenceCount(), 0u);
 }
 
+// The forces of `generators` from id look-ups and from their dense springs are the same to the bit,
+// and the elastic energy made with the dense forces matches the id look-ups' energy.
+void expectDenseForcesMatchIdLookups(const ForceGenerators& generators,
+                                     const ParticleStore& particles, const DenseSprings& dense) {
+  const Eigen::Index n = static_cast<Eigen::Index>(particles.size());
+  Vec3Array by_id = Vec3Array::Zero(3, n);
+  Vec3Array by_dense = Vec3Array::Zero(3, n);
+  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
+                            9.81, 0.01, by_id);
+  Real elastic = -1.0;
+  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
+                            9.81, 0.01, by_dense, &dense, &elastic);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(by_id(c, i), by_dense(c, i)) << "particle " << i << " component " << c;
+    }
+  }
+  EXPECT_GT(by_id.cwiseAbs().maxCoeff(), 0.0);
+  const Real energy = generatorPotentialEnergy(generators, particles);
+  EXPECT_GT(energy, 0.0);
+  EXPECT_NEAR(generatorPotentialEnergy(generators, particles, &dense), energy, 1e-12 * energy);
+  EXPECT_NEAR(elastic, energy, 1e-12 * energy);
+}
+
 // Forces from springs resolved to dense indices equal the id look-ups bit for bit after a removal
 // reordered the store, and so does the elastic energy of the springs.
 TEST(StepCache, DenseSpringsMatchIdLookupsAfterARemoval) {
@@ -110,21 +134,8 @@ TEST(StepCache, DenseSpringsMatchIdLookupsAfterARemoval) {
     generators.bungees.push_back(Bungee{ids[i + 1], ids[i], 7.0, 0.5, 0.1});
   }
   generators.springs.push_back(Spring{ids[0], ids[7], 2.0, 3.0, 0.0});
-  const DenseSprings dense = resolveDenseSprings(generators, particles);
-  const Eigen::Index n = static_cast<Eigen::Index>(particles.size());
-  Vec3Array by_id = Vec3Array::Zero(3, n);
-  Vec3Array by_dense = Vec3Array::Zero(3, n);
-  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
-                            9.81, 0.01, by_id);
-  Real elastic = -1.0;
-  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
-                            9.81, 0.01, by_dense, &dense, &elastic);
-  EXPECT_TRUE((by_id.array() == by_dense.array()).all());
-  EXPECT_GT(by_id.cwiseAbs().maxCoeff(), 0.0);
-  const Real energy = generatorPotentialEnergy(generators, particles);
-  EXPECT_GT(energy, 0.0);
-  EXPECT_NEAR(generatorPotentialEnergy(generators, particles, &dense), energy, 1e-12 * energy);
-  EXPECT_NEAR(elastic, energy, 1e-12 * energy);
+  expectDenseForcesMatchIdLookups(generators, particles,
+                                  resolveDenseSprings(generators, particles));
 }
 
 // A cloth whose rows and columns make runs (ends advancing together, some given b before a, some
@@ -191,24 +202,7 @@ TEST(StepCache, SpringRunsMatchIdLookups) {
     covered += s.count;
   }
   EXPECT_EQ(covered, dense.springs.size());
-
-  const Eigen::Index n = static_cast<Eigen::Index>(particles.size());
-  Vec3Array by_id = Vec3Array::Zero(3, n);
-  Vec3Array by_dense = Vec3Array::Zero(3, n);
-  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
-                            9.81, 0.01, by_id);
-  Real elastic = -1.0;
-  accumulateGeneratorForces(generators, particles, particles.positions(), particles.velocities(),
-                            9.81, 0.01, by_dense, &dense, &elastic);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      ASSERT_EQ(by_id(c, i), by_dense(c, i)) << "particle " << i << " component " << c;
-    }
-  }
-  EXPECT_GT(by_id.cwiseAbs().maxCoeff(), 0.0);
-  const Real energy = generatorPotentialEnergy(generators, particles);
-  EXPECT_GT(energy, 0.0);
-  EXPECT_NEAR(elastic, energy, 1e-12 * energy);
+  expectDenseForcesMatchIdLookups(generators, particles, dense);
 }
 
 }  // namespace
