@@ -517,44 +517,27 @@ DenseSprings resolveDenseSprings(const ForceGenerators& generators,
 Real generatorPotentialEnergy(const ForceGenerators& generators, const ParticleStore& particles,
                               const DenseSprings* dense) {
   const auto x = particles.positions();
-  const auto index = [&particles](const ParticleId id) {
-    return particles.denseIndexUnchecked(id);
-  };
-  const auto elastic = [](const Real stiffness, const Real extension) {
-    return 0.5 * stiffness * extension * extension;
-  };
+  // The springs and bungees between particles, then the rest: the order in which
+  // accumulateGeneratorForces sums its by-product.
   Real energy = 0.0;
-  const Real* const position = x.data();
   if (dense) {
     energy = addDensePairEnergy(energy, dense->springs, x, false);
-  } else {
-    for (const Spring& s : generators.springs) {
-      const Real* const xa = position + 3 * index(s.a);
-      const Real* const xb = position + 3 * index(s.b);
-      const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
-      energy +=
-          elastic(s.stiffness, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s.rest_length);
-    }
-  }
-  for (const AnchoredSpring& s : generators.anchored_springs) {
-    energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length);
-  }
-  if (dense) {
     energy = addDensePairEnergy(energy, dense->bungees, x, true);
   } else {
+    const auto length = [&particles, &x](const ParticleId a, const ParticleId b) {
+      return (x.col(particles.denseIndexUnchecked(a)) - x.col(particles.denseIndexUnchecked(b)))
+          .norm();
+    };
+    for (const Spring& s : generators.springs) {
+      const Real extension = length(s.a, s.b) - s.rest_length;
+      energy += 0.5 * s.stiffness * extension * extension;
+    }
     for (const Bungee& s : generators.bungees) {
-      const Real extension = (x.col(index(s.a)) - x.col(index(s.b))).norm() - s.rest_length;
-      if (extension > 0.0) energy += elastic(s.stiffness, extension);
+      const Real extension = length(s.a, s.b) - s.rest_length;
+      if (extension > 0.0) energy += 0.5 * s.stiffness * extension * extension;
     }
   }
-  for (const AnchoredBungee& s : generators.anchored_bungees) {
-    const Real extension = (x.col(index(s.particle)) - s.anchor).norm() - s.rest_length;
-    if (extension > 0.0) energy += elastic(s.stiffness, extension);
-  }
-  for (const StiffSpring& s : generators.stiff_springs) {
-    energy += elastic(s.stiffness, (x.col(index(s.particle)) - s.anchor).norm());
-  }
-  return energy;
+  return energy + nonPairPotentialEnergy(generators, particles, x);
 }
 
 }  // namespace engine
