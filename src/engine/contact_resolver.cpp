@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mass_aggregate_sim/engine/isolated_contact_batch.h"
+
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
@@ -74,7 +76,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
-                              ContactStats& stats, const bool find_isolated) {
+                              ContactStats& stats, const IsolatedContacts isolated) {
   // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
   if (flagged_count_ > 0) {
     for (const std::uint32_t i : touched_) {
@@ -96,7 +98,7 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
 
-  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop, find_isolated);
+  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop, isolated);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
@@ -278,7 +280,7 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
 void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
-                              const Real slop, const bool find_isolated) {
+                              const Real slop, const IsolatedContacts isolated) {
   const std::size_t count = contacts.size();
   const std::size_t n = static_cast<std::size_t>(v.cols());
   if (mixed_stamp_.size() != n || ++stamp_ == 0) {
@@ -288,10 +290,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     stamp_ = 1;
   }
   if (static_cast<std::size_t>(initial_velocity_.cols()) != n) initial_velocity_.resize(3, n);
-  if (find_isolated) {
+  const bool find_isolated = isolated != IsolatedContacts::kNone;
+  const bool all_isolated = isolated == IsolatedContacts::kAll;
+  if (isolated == IsolatedContacts::kFind) {
     countParticleUses(contacts);
   } else {
-    any_shared_ = true;  // not looked for: every contact is a row
+    any_shared_ = !all_isolated;  // kNone: not looked for, every contact is a row
   }
   // With particles shared by several contacts (a pile) most contacts become rows: then |a| of
   // every particle in one vectorised loop and one copy of all velocities cost less than doing it
@@ -332,12 +336,20 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
                                      ? static_cast<std::ptrdiff_t>(cursor++)
                                      : findWarm(c.key, cursor);
-    if (find_isolated && c.kind == ContactKind::kContact && !isShared(c.a) &&
-        !(b && isShared(c.b))) {
+    if (find_isolated && c.kind == ContactKind::kContact &&
+        (all_isolated || (!isShared(c.a) && !(b && isShared(c.b))))) {
       ++isolated_count_;
       const bool warm_friction = found >= 0 && !warm_friction_.empty();
       const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
       const Vec3* const previous_friction = warm_friction ? &warm_friction_[found] : nullptr;
+      if (!b && !(c.friction > 0.0)) {
+        // The usual isolated contact (a ball on the ground): solved four at a time.
+        batch_contact_[batch_count_] = static_cast<std::uint32_t>(k);
+        batch_previous_[batch_count_] = previous;
+        if (++batch_count_ == kBatchSize)
+          flushIsolatedBatch(contacts, x, v, inverse_mass, acceleration, h, slop);
+        continue;
+      }
       if (b) {
         solveIsolated<true>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
                             previous_friction);
@@ -452,7 +464,50 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
       touch(row.b);
     }
   }
+  // The last entries that do not fill four lanes go the scalar way (the same bits).
+  const std::size_t whole = batch_count_ - batch_count_ % 4;
+  const std::size_t rest = batch_count_ - whole;
+  batch_count_ = whole;
+  flushIsolatedBatch(contacts, x, v, inverse_mass, acceleration, h, slop);
+  for (std::size_t e = whole; e < whole + rest; ++e) {
+    const std::uint32_t k = batch_contact_[e];
+    solveIsolated<false>(k, contacts[k], x, v, inverse_mass, acceleration, h, slop,
+                         batch_previous_[e], nullptr);
+  }
   row_count_ = r;
+}
+
+void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, Vec3Map& x,
+                                         Vec3Map& v, const ConstScalarMap& inverse_mass,
+                                         const Eigen::Ref<const Vec3Array>& acceleration,
+                                         const Real h, const Real slop) {
+  if (batch_count_ == 0) return;
+  IsolatedBatchInputs in;
+  in.contacts = contacts.data();
+  in.contact_index = batch_contact_.data();
+  in.previous_impulse = batch_previous_.data();
+  in.count = batch_count_;
+  in.inverse_mass = inverse_mass.data();
+  in.acceleration = acceleration.data();
+  in.acceleration_stride = acceleration.outerStride();
+  in.h = h;
+  in.slop = slop;
+  in.follow_scale = follow_scale_;
+  in.inverse_follow_scale = inverse_follow_scale_;
+  const std::size_t touched_before = touched_.size();
+  touched_.resize(touched_before + batch_count_);
+  IsolatedBatchOutputs out;
+  out.next_warm_normal = next_warm_normal_.data();
+  out.touched = touched_.data() + touched_before;
+  out.max_penetration = isolated_max_penetration_;
+  out.max_closing = isolated_max_closing_;
+  out.corrected = isolated_corrected_;
+  solveIsolatedBatch(in, x.data(), v.data(), out);
+  touched_.resize(touched_before + out.touched_count);
+  isolated_max_penetration_ = out.max_penetration;
+  isolated_max_closing_ = out.max_closing;
+  isolated_corrected_ = out.corrected;
+  batch_count_ = 0;
 }
 
 int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,

@@ -469,9 +469,11 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   ContactSink sink(ws.contacts, settings.max_contacts, dropped);
 
   // Colliders first: a pile is held up from the ground, so its contacts come first in each pass.
+  ws.particle_in_two_collider_contacts = false;
   if (!colliders_.empty()) {
     for (std::size_t i = 0; i < n; ++i) {
       if (inverse_mass[i] <= 0.0) continue;
+      const std::size_t contacts_before = ws.contacts.size();
       const Vec3 xi = x.col(i);
       const Real r = radius[i];
       const auto index = static_cast<std::uint32_t>(i);
@@ -508,6 +510,9 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
         add(sphereVsBox(xi, r, c, margin), c.id, c.material);
       for (const CapsuleCollider& c : colliders_.capsules) {
         add(sphereVsCapsule(xi, r, c, margin), c.id, c.material);
+      }
+      if (ws.contacts.size() - contacts_before > 1) {
+        ws.particle_in_two_collider_contacts = true;
       }
     }
   }
@@ -705,12 +710,17 @@ void World::resolveContacts(const Real h) {
   // Isolated contacts are looked for when all contacts are with colliders (most are then
   // isolated: a particle meets two colliders only in a corner); with particle pairs or links
   // few are, and the count would cost more than it saves.
+  // When no particle met two colliders, every contact is isolated, known without counting.
   const bool only_collider_contacts =
       ws.links.empty() && (!settings.particle_collisions || ws.pairs.empty());
+  IsolatedContacts isolated = IsolatedContacts::kNone;
+  if (only_collider_contacts) {
+    isolated =
+        ws.particle_in_two_collider_contacts ? IsolatedContacts::kFind : IsolatedContacts::kAll;
+  }
   ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
                       particles_.inverseMasses(), acceleration_, h, settings,
-                      positionWeight(config_.integrator), last_contact_stats_,
-                      only_collider_contacts);
+                      positionWeight(config_.integrator), last_contact_stats_, isolated);
   last_contact_stats_.contacts = ws.contacts.size();
   last_contact_stats_.dropped = dropped_this_step_;
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -12,6 +13,13 @@
 
 namespace mass_aggregate_sim {
 namespace engine {
+
+// Which contacts resolve() takes as isolated (see ContactResolver).
+enum class IsolatedContacts : std::uint8_t {
+  kNone,  // none: every contact is a row (cheaper where few are isolated, as in a pile)
+  kFind,  // those whose particles are in no other contact, found by counting each particle's
+  kAll,   // every contact: the caller knows no particle is in two (and there are no links)
+};
 
 // Iterative impulse resolver. Velocities first, then positions, each by Gauss-Seidel passes over
 // the contacts in order until a pass changes less than the tolerance or max_iterations is reached:
@@ -47,13 +55,12 @@ class ContactResolver {
   // if those impulses had been forces inside the step: a resting particle then ends where it
   // started instead of sinking by beta g h^2 for the position passes to push back up.
   // links: the geometry of link constraints, by Contact::link.
-  // find_isolated: look for isolated contacts (a pass counting each particle's contacts); false
-  // makes every contact a row (cheaper where few are isolated, as in a pile).
+  // isolated: which contacts are solved whole in the set-up pass.
   void resolve(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links, Vec3Map x,
                Vec3Map v, const ConstScalarMap& inverse_mass,
                const Eigen::Ref<const Vec3Array>& acceleration, Real h,
                const CollisionSettings& settings, Real position_weight, ContactStats& stats,
-               bool find_isolated = true);
+               IsolatedContacts isolated = IsolatedContacts::kFind);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // How many contacts of the last resolve() were isolated (solved in the set-up pass).
@@ -128,11 +135,16 @@ class ContactResolver {
                      const ConstScalarMap& inverse_mass,
                      const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
                      Real previous_impulse, const Vec3* previous_friction);
+  // Solves the isolated contacts gathered in batch_contact_ (a multiple of four of them) with
+  // solveIsolatedBatch() and empties the batch.
+  void flushIsolatedBatch(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+                          const ConstScalarMap& inverse_mass,
+                          const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop);
   // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
   void prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
-               Real h, Real slop, bool find_isolated);
+               Real h, Real slop, IsolatedContacts isolated);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
   // Moves each particle with its resting contacts' impulses (see resolve()).
@@ -168,6 +180,12 @@ class ContactResolver {
   Real isolated_max_penetration_ = 0.0;
   Real isolated_max_closing_ = 0.0;
   bool isolated_corrected_ = false;
+  // Isolated contacts without b or friction waiting to be solved four at a time: their index and
+  // warm start.
+  static constexpr std::size_t kBatchSize = 64;
+  std::array<std::uint32_t, kBatchSize> batch_contact_{};
+  std::array<Real, kBatchSize> batch_previous_{};
+  std::size_t batch_count_ = 0;
   std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse

@@ -16,6 +16,8 @@ namespace engine {
 // Buffers the contact phase of World keeps between substeps (never part of the world's state).
 struct ContactWorkspace {
   std::vector<Contact> contacts;
+  // This substep's generation gave some particle contacts with two or more colliders.
+  bool particle_in_two_collider_contacts = false;
   std::vector<LinkGeometry> links;   // of the link contacts, by Contact::link
   std::vector<std::uint32_t> slots;  // per particle: its id's slot, for the contact keys
   std::uint64_t slots_layout = ~std::uint64_t{0};  // ParticleStore::layoutVersion() of slots
