@@ -77,6 +77,45 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const CollisionSettings& settings, const Real position_weight,
                               ContactStats& stats, const IsolatedContacts isolated) {
+  beginSubstep(x.cols(), h, position_weight, links);
+  if (isolated == IsolatedContacts::kFind) {
+    countParticleUses(contacts);
+  } else {
+    any_shared_ = isolated == IsolatedContacts::kNone;  // not looked for: every contact is a row
+  }
+  // With particles shared by several contacts (a pile) most contacts become rows: then |a| of
+  // every particle in one vectorised loop and one copy of all velocities cost less than doing it
+  // per row; otherwise (a few rows among isolated contacts) per row particle.
+  beginPrepare(v, acceleration, any_shared_);
+  prepare(contacts, 0, x, v, inverse_mass, acceleration, h, settings.penetration_slop, isolated);
+  finishSubstep(contacts, x, v, inverse_mass, h, settings, stats);
+}
+
+void ContactResolver::beginParts(const Eigen::Index particle_count, const Real h,
+                                 const Real position_weight) {
+  beginSubstep(particle_count, h, position_weight, no_links_);
+  parts_size_ = 0;
+}
+
+void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
+                              const ConstScalarMap& inverse_mass,
+                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
+                              const Real slop, const IsolatedContacts isolated) {
+  if (parts_size_ == 0) beginPrepare(v, acceleration, false);
+  if (isolated == IsolatedContacts::kFind) countParticleUses(part);
+  prepare(part, parts_size_, x, v, inverse_mass, acceleration, h, slop, isolated);
+  parts_size_ += part.size();
+}
+
+void ContactResolver::finishParts(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
+                                  const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
+                                  const CollisionSettings& settings, ContactStats& stats) {
+  if (parts_size_ == 0) beginPrepare(v, acceleration, false);  // no contacts: empty phases
+  finishSubstep(no_contacts_, x, v, inverse_mass, h, settings, stats);
+}
+
+void ContactResolver::beginSubstep(const Eigen::Index n, const Real h, const Real position_weight,
+                                   const std::vector<LinkGeometry>& links) {
   // Isolated contacts' particles are in touched_ without a flag or a displacement entry.
   if (flagged_count_ > 0) {
     for (const std::uint32_t i : touched_) {
@@ -92,13 +131,22 @@ void ContactResolver::resolve(std::vector<Contact>& contacts,
   follow_scale_ = h * position_weight;
   // Once per substep, so each resting contact multiplies instead of dividing.
   inverse_follow_scale_ = follow_scale_ > 0.0 ? 1.0 / follow_scale_ : 0.0;
-  const Eigen::Index n = x.cols();
   if (displacement_.cols() != n) {
     displacement_.setZero(3, n);
     touched_flag_.assign(static_cast<std::size_t>(n), 0);
   }
+  const auto particles = static_cast<std::size_t>(n);
+  if (mixed_stamp_.size() != particles || ++stamp_ == 0) {
+    mixed_stamp_.assign(particles, 0);
+    initial_stamp_.assign(particles, 0);
+    uses_.assign(particles, 0);
+    stamp_ = 1;
+  }
+}
 
-  prepare(contacts, x, v, inverse_mass, acceleration, h, settings.penetration_slop, isolated);
+void ContactResolver::finishSubstep(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+                                    const ConstScalarMap& inverse_mass, const Real h,
+                                    const CollisionSettings& settings, ContactStats& stats) {
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
@@ -277,30 +325,12 @@ void ContactResolver::solveIsolated(const std::size_t k, const Contact& c, Vec3M
   }
 }
 
-void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
-                              const ConstScalarMap& inverse_mass,
-                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
-                              const Real slop, const IsolatedContacts isolated) {
-  const std::size_t count = contacts.size();
-  const std::size_t n = static_cast<std::size_t>(v.cols());
-  if (mixed_stamp_.size() != n || ++stamp_ == 0) {
-    mixed_stamp_.assign(n, 0);
-    initial_stamp_.assign(n, 0);
-    uses_.assign(n, 0);
-    stamp_ = 1;
-  }
-  if (static_cast<std::size_t>(initial_velocity_.cols()) != n) initial_velocity_.resize(3, n);
-  const bool find_isolated = isolated != IsolatedContacts::kNone;
-  const bool all_isolated = isolated == IsolatedContacts::kAll;
-  if (isolated == IsolatedContacts::kFind) {
-    countParticleUses(contacts);
-  } else {
-    any_shared_ = !all_isolated;  // kNone: not looked for, every contact is a row
-  }
-  // With particles shared by several contacts (a pile) most contacts become rows: then |a| of
-  // every particle in one vectorised loop and one copy of all velocities cost less than doing it
-  // per row; otherwise (a few rows among isolated contacts) per row particle.
-  rows_dense_ = any_shared_;
+void ContactResolver::beginPrepare(const Vec3Map& v,
+                                   const Eigen::Ref<const Vec3Array>& acceleration,
+                                   const bool dense) {
+  const Eigen::Index n = v.cols();
+  if (initial_velocity_.cols() != n) initial_velocity_.resize(3, n);
+  rows_dense_ = dense;
   if (rows_dense_) {
     acceleration_norm_.resize(acceleration.cols());
     for (Eigen::Index i = 0; i < acceleration.cols(); ++i) {
@@ -310,28 +340,48 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     initial_velocity_ = v;
   }
   any_mixed_ = false;
-  // Never shrunk: growing back would value-initialise every row again.
-  if (rows_.size() < count) {
-    rows_.resize(count);
-    row_contact_.resize(count);
-  }
-  penetration_.resize(count);
-  friction_coefficient_.resize(count);
-  friction_total_.resize(count);
-  next_warm_key_.resize(count);
-  next_warm_normal_.resize(count);
+  next_warm_key_.clear();
+  next_warm_normal_.clear();
   next_warm_friction_.clear();
   any_friction_ = false;
   isolated_count_ = 0;
   isolated_max_penetration_ = 0.0;
   isolated_max_closing_ = 0.0;
   isolated_corrected_ = false;
-  std::size_t cursor = 0;
-  std::size_t r = 0;
+  warm_cursor_ = 0;
+  row_count_ = 0;
+}
+
+void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t base, Vec3Map& x,
+                              Vec3Map& v, const ConstScalarMap& inverse_mass,
+                              const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
+                              const Real slop, const IsolatedContacts isolated) {
+  const std::size_t count = contacts.size();
+  const std::size_t total_count = base + count;
+  const bool find_isolated = isolated != IsolatedContacts::kNone;
+  const bool all_isolated = isolated == IsolatedContacts::kAll;
+  // Never shrunk: growing back would value-initialise every row again.
+  if (rows_.size() < row_count_ + count) {
+    rows_.resize(row_count_ + count);
+    row_contact_.resize(row_count_ + count);
+  }
+  if (penetration_.size() < row_count_ + count) {
+    penetration_.resize(row_count_ + count);
+    friction_coefficient_.resize(row_count_ + count);
+    friction_total_.resize(row_count_ + count);
+  }
+  next_warm_key_.resize(total_count);
+  next_warm_normal_.resize(total_count);
+  if (!next_warm_friction_.empty()) next_warm_friction_.resize(total_count, Vec3::Zero());
+  std::size_t cursor = warm_cursor_;
+  std::size_t r = row_count_;
+  // Isolated ones waiting in the batch index this part's contacts; their warm starts go at base +.
+  batch_base_ = base;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];
     const bool b = hasB(c);
-    next_warm_key_[k] = c.key;
+    const std::size_t g = base + k;  // its place among all the substep's contacts
+    next_warm_key_[g] = c.key;
     // Inline the usual case: the entry at the cursor.
     const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
                                      ? static_cast<std::ptrdiff_t>(cursor++)
@@ -351,17 +401,17 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
         continue;
       }
       if (b) {
-        solveIsolated<true>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+        solveIsolated<true>(g, c, x, v, inverse_mass, acceleration, h, slop, previous,
                             previous_friction);
       } else {
-        solveIsolated<false>(k, c, x, v, inverse_mass, acceleration, h, slop, previous,
+        solveIsolated<false>(g, c, x, v, inverse_mass, acceleration, h, slop, previous,
                              previous_friction);
       }
       continue;
     }
     const std::size_t row_index = r++;
     Row& row = rows_[row_index];
-    row_contact_[row_index] = static_cast<std::uint32_t>(k);
+    row_contact_[row_index] = static_cast<std::uint32_t>(g);
     row.a = c.a;
     row.b = b ? c.b : c.a;
     row.kind = c.kind;
@@ -471,10 +521,12 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
   flushIsolatedBatch(contacts, x, v, inverse_mass, acceleration, h, slop);
   for (std::size_t e = whole; e < whole + rest; ++e) {
     const std::uint32_t k = batch_contact_[e];
-    solveIsolated<false>(k, contacts[k], x, v, inverse_mass, acceleration, h, slop,
+    solveIsolated<false>(base + k, contacts[k], x, v, inverse_mass, acceleration, h, slop,
                          batch_previous_[e], nullptr);
   }
+  batch_count_ = 0;
   row_count_ = r;
+  warm_cursor_ = cursor;
 }
 
 void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, Vec3Map& x,
@@ -497,7 +549,7 @@ void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, V
   const std::size_t touched_before = touched_.size();
   touched_.resize(touched_before + batch_count_);
   IsolatedBatchOutputs out;
-  out.next_warm_normal = next_warm_normal_.data();
+  out.next_warm_normal = next_warm_normal_.data() + batch_base_;
   out.touched = touched_.data() + touched_before;
   out.max_penetration = isolated_max_penetration_;
   out.max_closing = isolated_max_closing_;

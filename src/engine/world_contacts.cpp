@@ -456,6 +456,64 @@ void World::sweepParticles(ContactWorkspace& ws) {
   last_contact_stats_.ccd_hits = moved;
 }
 
+bool World::generateColliderContacts(ContactWorkspace& ws, const std::size_t begin,
+                                     const std::size_t end, std::size_t& dropped) {
+  const auto x = particles_.positions();
+  const auto radius = particles_.radii();
+  const auto inverse_mass = particles_.inverseMasses();
+  const std::size_t n = particles_.size();
+  const CollisionSettings& settings = collision_settings_;
+  // Swept results exist only when sweepParticles() ran this substep.
+  const bool swept = settings.continuous && ws.time_of_impact.size() == n &&
+                     ws.collider_hit.size() == n && ws.pair_is_swept.size() == ws.pairs.size();
+  const Real margin = contactMargin(settings);
+  ContactSink sink(ws.contacts, settings.max_contacts, dropped);
+  bool in_two = false;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (inverse_mass[i] <= 0.0) continue;
+    const std::size_t contacts_before = ws.contacts.size();
+    const Vec3 xi = x.col(i);
+    const Real r = radius[i];
+    const auto index = static_cast<std::uint32_t>(i);
+    // The collider a swept test stopped this particle at gets a contact even when just touching.
+    const ContactWorkspace::ColliderHit* hit = nullptr;
+    if (swept && ws.collider_hit[i] >= 0 &&
+        ws.time_of_impact[i] == ws.collider_hits[ws.collider_hit[i]].time) {
+      hit = &ws.collider_hits[ws.collider_hit[i]];
+    }
+    const auto add = [&](const std::optional<ShapeContact>& shape, const ColliderId id,
+                         const Material& material) {
+      if (hit && hit->collider == id) {
+        // Stopped at its time of impact: touching, whatever rounding says.
+        const ShapeContact touching{shape ? shape->normal : hit->normal,
+                                    shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
+        colliderContact(sink.add(), index, ws.slots[i], id, touching, material);
+      } else if (shape) {
+        colliderContact(sink.add(), index, ws.slots[i], id, *shape, material);
+      }
+    };
+    for (const PlaneCollider& c : colliders_.planes) {
+      // sphereVsPlane() inline: most spheres are far from most planes.
+      const Real penetration = r - (c.normal.dot(xi) - c.offset);
+      if (penetration > -margin) {
+        add(ShapeContact{c.normal, penetration}, c.id, c.material);
+      } else if (hit) {
+        add(std::nullopt, c.id, c.material);
+      }
+    }
+    for (const SphereCollider& c : colliders_.spheres) {
+      add(sphereVsSphere(xi, r, c.center, c.radius, margin), c.id, c.material);
+    }
+    for (const BoxCollider& c : colliders_.boxes)
+      add(sphereVsBox(xi, r, c, margin), c.id, c.material);
+    for (const CapsuleCollider& c : colliders_.capsules) {
+      add(sphereVsCapsule(xi, r, c, margin), c.id, c.material);
+    }
+    if (ws.contacts.size() - contacts_before > 1) in_two = true;
+  }
+  return in_two;
+}
+
 void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   const auto x = particles_.positions();
   const auto radius = particles_.radii();
@@ -469,53 +527,8 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   ContactSink sink(ws.contacts, settings.max_contacts, dropped);
 
   // Colliders first: a pile is held up from the ground, so its contacts come first in each pass.
-  ws.particle_in_two_collider_contacts = false;
-  if (!colliders_.empty()) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (inverse_mass[i] <= 0.0) continue;
-      const std::size_t contacts_before = ws.contacts.size();
-      const Vec3 xi = x.col(i);
-      const Real r = radius[i];
-      const auto index = static_cast<std::uint32_t>(i);
-      // The collider a swept test stopped this particle at gets a contact even when just touching.
-      const ContactWorkspace::ColliderHit* hit = nullptr;
-      if (swept && ws.collider_hit[i] >= 0 &&
-          ws.time_of_impact[i] == ws.collider_hits[ws.collider_hit[i]].time) {
-        hit = &ws.collider_hits[ws.collider_hit[i]];
-      }
-      const auto add = [&](const std::optional<ShapeContact>& shape, const ColliderId id,
-                           const Material& material) {
-        if (hit && hit->collider == id) {
-          // Stopped at its time of impact: touching, whatever rounding says.
-          const ShapeContact touching{shape ? shape->normal : hit->normal,
-                                      shape ? std::max(shape->penetration, Real{0.0}) : 0.0};
-          colliderContact(sink.add(), index, ws.slots[i], id, touching, material);
-        } else if (shape) {
-          colliderContact(sink.add(), index, ws.slots[i], id, *shape, material);
-        }
-      };
-      for (const PlaneCollider& c : colliders_.planes) {
-        // sphereVsPlane() inline: most spheres are far from most planes.
-        const Real penetration = r - (c.normal.dot(xi) - c.offset);
-        if (penetration > -margin) {
-          add(ShapeContact{c.normal, penetration}, c.id, c.material);
-        } else if (hit) {
-          add(std::nullopt, c.id, c.material);
-        }
-      }
-      for (const SphereCollider& c : colliders_.spheres) {
-        add(sphereVsSphere(xi, r, c.center, c.radius, margin), c.id, c.material);
-      }
-      for (const BoxCollider& c : colliders_.boxes)
-        add(sphereVsBox(xi, r, c, margin), c.id, c.material);
-      for (const CapsuleCollider& c : colliders_.capsules) {
-        add(sphereVsCapsule(xi, r, c, margin), c.id, c.material);
-      }
-      if (ws.contacts.size() - contacts_before > 1) {
-        ws.particle_in_two_collider_contacts = true;
-      }
-    }
-  }
+  ws.particle_in_two_collider_contacts =
+      !colliders_.empty() && generateColliderContacts(ws, 0, n, dropped);
 
   if (settings.particle_collisions) {
     const bool filter = !settings.collide_linked && !ws.linked_pairs.empty();
@@ -589,6 +602,31 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   for (const AnchoredRod& l : links_.anchored_rods) {
     link(ContactKind::kRod, l.id, dense(l.particle), kNoParticle, l.anchor, l.length, 0.0);
   }
+}
+
+// Only collider contacts: each particle's are made together, so they are made and solved in parts
+// of particles while they are still in the cache (the same results as all at once: see
+// ContactResolver::beginParts). Where no particle of a part meets two colliders, every contact of
+// the part is isolated without counting.
+void World::resolveColliderContactsInParts(ContactWorkspace& ws, const Real h) {
+  constexpr std::size_t kPartParticles = 256;
+  const std::size_t n = particles_.size();
+  const CollisionSettings& settings = collision_settings_;
+  ws.resolver.beginParts(static_cast<Eigen::Index>(n), h, positionWeight(config_.integrator));
+  std::size_t contacts = 0;
+  for (std::size_t begin = 0; begin < n && !colliders_.empty(); begin += kPartParticles) {
+    const std::size_t end = std::min(n, begin + kPartParticles);
+    ws.contacts.clear();
+    const bool in_two = generateColliderContacts(ws, begin, end, dropped_this_step_);
+    contacts += ws.contacts.size();
+    ws.resolver.addPart(ws.contacts, particles_.positions(), particles_.velocities(),
+                        particles_.inverseMasses(), acceleration_, h, settings.penetration_slop,
+                        in_two ? IsolatedContacts::kFind : IsolatedContacts::kAll);
+  }
+  ws.resolver.finishParts(particles_.positions(), particles_.velocities(),
+                          particles_.inverseMasses(), acceleration_, h, settings,
+                          last_contact_stats_);
+  last_contact_stats_.contacts = contacts;
 }
 
 void World::resolveContacts(const Real h) {
@@ -689,39 +727,41 @@ void World::resolveContacts(const Real h) {
   }
   ws.contacts.clear();
   ws.links.clear();
-  generateContacts(ws, dropped_this_step_);
-  if (bottom_up && ws.contacts.size() > 1) {
-    // Bottom up along gravity (colliders first): a forward pass carries the support from the
-    // ground to the top of a pile. Without links the contacts already are in that order: the
-    // collider ones (bucket 0), then those of the pairs, sorted when the list was made. Links
-    // (listed last) are sorted in with the others by the buckets of now.
-    if (!links_.empty()) {
-      find_buckets();
-      ws.item_bucket.resize(ws.contacts.size());
-      for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
-        const Contact& c = ws.contacts[k];
-        ws.item_bucket[k] =
-            c.b == kNoParticle ? 0 : std::min(ws.particle_bucket[c.a], ws.particle_bucket[c.b]);
-      }
-      sortByBucket(ws.contacts, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_contacts);
-    }
-  }
-
-  // Isolated contacts are looked for when all contacts are with colliders (most are then
-  // isolated: a particle meets two colliders only in a corner); with particle pairs or links
-  // few are, and the count would cost more than it saves.
-  // When no particle met two colliders, every contact is isolated, known without counting.
   const bool only_collider_contacts =
-      ws.links.empty() && (!settings.particle_collisions || ws.pairs.empty());
-  IsolatedContacts isolated = IsolatedContacts::kNone;
-  if (only_collider_contacts) {
-    isolated =
-        ws.particle_in_two_collider_contacts ? IsolatedContacts::kFind : IsolatedContacts::kAll;
+      links_.empty() && (!settings.particle_collisions || ws.pairs.empty());
+  if (only_collider_contacts && settings.max_contacts == 0) {
+    resolveColliderContactsInParts(ws, h);
+  } else {
+    generateContacts(ws, dropped_this_step_);
+    if (bottom_up && ws.contacts.size() > 1) {
+      // Bottom up along gravity (colliders first): a forward pass carries the support from the
+      // ground to the top of a pile. Without links the contacts already are in that order: the
+      // collider ones (bucket 0), then those of the pairs, sorted when the list was made. Links
+      // (listed last) are sorted in with the others by the buckets of now.
+      if (!links_.empty()) {
+        find_buckets();
+        ws.item_bucket.resize(ws.contacts.size());
+        for (std::size_t k = 0; k < ws.contacts.size(); ++k) {
+          const Contact& c = ws.contacts[k];
+          ws.item_bucket[k] =
+              c.b == kNoParticle ? 0 : std::min(ws.particle_bucket[c.a], ws.particle_bucket[c.b]);
+        }
+        sortByBucket(ws.contacts, ws.item_bucket, buckets, ws.bucket_start, ws.sorted_contacts);
+      }
+    }
+    // Isolated contacts are looked for when all contacts are with colliders (most are then
+    // isolated: a particle meets two colliders only in a corner); with particle pairs or links
+    // few are, and the count would cost more than it saves.
+    IsolatedContacts isolated = IsolatedContacts::kNone;
+    if (only_collider_contacts) {
+      isolated =
+          ws.particle_in_two_collider_contacts ? IsolatedContacts::kFind : IsolatedContacts::kAll;
+    }
+    ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
+                        particles_.inverseMasses(), acceleration_, h, settings,
+                        positionWeight(config_.integrator), last_contact_stats_, isolated);
+    last_contact_stats_.contacts = ws.contacts.size();
   }
-  ws.resolver.resolve(ws.contacts, ws.links, particles_.positions(), particles_.velocities(),
-                      particles_.inverseMasses(), acceleration_, h, settings,
-                      positionWeight(config_.integrator), last_contact_stats_, isolated);
-  last_contact_stats_.contacts = ws.contacts.size();
   last_contact_stats_.dropped = dropped_this_step_;
 
   const auto& touched = ws.resolver.touched();

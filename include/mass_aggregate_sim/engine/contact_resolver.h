@@ -61,6 +61,17 @@ class ContactResolver {
                const Eigen::Ref<const Vec3Array>& acceleration, Real h,
                const CollisionSettings& settings, Real position_weight, ContactStats& stats,
                IsolatedContacts isolated = IsolatedContacts::kFind);
+  // resolve() with the contacts handed over in parts as they are made, so each part is solved
+  // while it is still in the cache: beginParts(), addPart() for each part, finishParts(). No
+  // links, and no particle in the contacts of two parts; a part may be overwritten once added.
+  // The same results as resolve() on all the parts' contacts in order.
+  void beginParts(Eigen::Index particle_count, Real h, Real position_weight);
+  void addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
+               const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
+               IsolatedContacts isolated);
+  void finishParts(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
+                   const Eigen::Ref<const Vec3Array>& acceleration, Real h,
+                   const CollisionSettings& settings, ContactStats& stats);
   // Dense indices of the particles whose position or velocity the last resolve() changed.
   const std::vector<std::uint32_t>& touched() const { return touched_; }
   // How many contacts of the last resolve() were isolated (solved in the set-up pass).
@@ -142,9 +153,20 @@ class ContactResolver {
                           const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop);
   // Index into the warm starts of the entry named `key`, or -1; `cursor` follows the contacts.
   std::ptrdiff_t findWarm(std::uint64_t key, std::size_t& cursor);
-  void prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+  // What every substep starts with, before any contact.
+  void beginSubstep(Eigen::Index n, Real h, Real position_weight,
+                    const std::vector<LinkGeometry>& links);
+  // Before the first contact of the substep; dense: see rows_dense_.
+  void beginPrepare(const Vec3Map& v, const Eigen::Ref<const Vec3Array>& acceleration, bool dense);
+  // Sets up contacts (the substep's from index `base` on): isolated ones are solved, the others
+  // become rows.
+  void prepare(std::vector<Contact>& contacts, std::size_t base, Vec3Map& x, Vec3Map& v,
                const ConstScalarMap& inverse_mass, const Eigen::Ref<const Vec3Array>& acceleration,
                Real h, Real slop, IsolatedContacts isolated);
+  // The velocity and position phases over the rows, and the stats.
+  void finishSubstep(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+                     const ConstScalarMap& inverse_mass, Real h, const CollisionSettings& settings,
+                     ContactStats& stats);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
   // Moves each particle with its resting contacts' impulses (see resolve()).
@@ -186,7 +208,12 @@ class ContactResolver {
   std::array<std::uint32_t, kBatchSize> batch_contact_{};
   std::array<Real, kBatchSize> batch_previous_{};
   std::size_t batch_count_ = 0;
-  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
+  std::size_t batch_base_ = 0;          // the batch's contacts are the substep's from this index on
+  std::size_t warm_cursor_ = 0;         // where the next contact's warm start is looked for first
+  std::size_t parts_size_ = 0;          // contacts added by addPart() this substep
+  std::vector<LinkGeometry> no_links_;  // always empty
+  std::vector<Contact> no_contacts_;    // always empty
+  std::vector<Real> penetration_;       // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // Warm starts: what each contact of the last substep ended it with (key, normal impulse,

@@ -222,6 +222,11 @@ class World {
   void resolveContacts(Real h);
   void sweepParticles(ContactWorkspace& workspace);
   void generateContacts(ContactWorkspace& workspace, std::size_t& dropped);
+  // The collider contacts of particles [begin, end), appended to workspace.contacts; true when
+  // one of them met two or more colliders.
+  bool generateColliderContacts(ContactWorkspace& workspace, std::size_t begin, std::size_t end,
+                                std::size_t& dropped);
+  void resolveColliderContactsInParts(ContactWorkspace& workspace, Real h);
   void buildLinkedPairs(ContactWorkspace& workspace) const;
   Material particleMaterial(std::size_t dense) const;
   Result<ColliderId> nextColliderId();
