@@ -147,6 +147,9 @@ void ContactResolver::beginSubstep(const Eigen::Index n, const Real h, const Rea
 void ContactResolver::finishSubstep(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                                     const ConstScalarMap& inverse_mass, const Real h,
                                     const CollisionSettings& settings, ContactStats& stats) {
+  next_warm_key_.resize(prepared_count_);
+  next_warm_normal_.resize(prepared_count_);
+  if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
@@ -340,8 +343,7 @@ void ContactResolver::beginPrepare(const Vec3Map& v,
     initial_velocity_ = v;
   }
   any_mixed_ = false;
-  next_warm_key_.clear();
-  next_warm_normal_.clear();
+  prepared_count_ = 0;
   next_warm_friction_.clear();
   any_friction_ = false;
   isolated_count_ = 0;
@@ -370,9 +372,15 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
     friction_coefficient_.resize(row_count_ + count);
     friction_total_.resize(row_count_ + count);
   }
-  next_warm_key_.resize(total_count);
-  next_warm_normal_.resize(total_count);
-  if (!next_warm_friction_.empty()) next_warm_friction_.resize(total_count, Vec3::Zero());
+  // Grown only, so adding parts does not fill them again; cut to size in finishSubstep().
+  if (next_warm_key_.size() < total_count) {
+    next_warm_key_.resize(total_count);
+    next_warm_normal_.resize(total_count);
+  }
+  if (!next_warm_friction_.empty() && next_warm_friction_.size() < total_count) {
+    next_warm_friction_.resize(total_count, Vec3::Zero());
+  }
+  prepared_count_ = total_count;
   std::size_t cursor = warm_cursor_;
   std::size_t r = row_count_;
   // Isolated ones waiting in the batch index this part's contacts; their warm starts go at base +.

@@ -210,6 +210,7 @@ class ContactResolver {
   std::size_t batch_count_ = 0;
   std::size_t batch_base_ = 0;          // the batch's contacts are the substep's from this index on
   std::size_t warm_cursor_ = 0;         // where the next contact's warm start is looked for first
+  std::size_t prepared_count_ = 0;      // contacts set up this substep (warm start entries)
   std::size_t parts_size_ = 0;          // contacts added by addPart() this substep
   std::vector<LinkGeometry> no_links_;  // always empty
   std::vector<Contact> no_contacts_;    // always empty
