@@ -19,8 +19,10 @@ ParticleEnergies EnergyAccumulator::sums(const Real* g) const {
 
 namespace {
 
-MAS_SIMD_CLONES void accumulateGroups(const std::size_t n, const Real* mass, const Real* x,
-                                      const Real* v, EnergyAccumulator& energies) {
+// Inlined into the cloned function below (see finite_check.cpp).
+inline __attribute__((always_inline)) void addGroups(const std::size_t n, const Real* mass,
+                                                     const Real* x, const Real* v,
+                                                     EnergyAccumulator& energies) {
   using simd::load;
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4) {
@@ -32,6 +34,11 @@ MAS_SIMD_CLONES void accumulateGroups(const std::size_t n, const Real* mass, con
     }
   }
   for (; i < n; ++i) energies.addParticle(mass[i], x + 3 * i, v + 3 * i);
+}
+
+MAS_SIMD_CLONES void accumulateGroups(const std::size_t n, const Real* mass, const Real* x,
+                                      const Real* v, EnergyAccumulator& energies) {
+  addGroups(n, mass, x, v, energies);
 }
 
 }  // namespace

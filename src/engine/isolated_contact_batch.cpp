@@ -268,7 +268,7 @@ MAS_SIMD_CLONES void dispatch(const IsolatedBatchInputs& in, Real* x, Real* v,
                     in.slop,
                     in.follow_scale,
                     in.inverse_follow_scale};
-  Running running{broadcast(0.0), broadcast(0.0), Mask4{0, 0, 0, 0}, 0};
+  Running running{Real4{}, Real4{}, Mask4{}, 0};  // +0 maxima, nothing corrected or written
   Real* const next_warm_normal = out.next_warm_normal;
   std::uint32_t* const touched = out.touched + out.touched_count;
   const bool follow = in.follow_scale > 0.0;
