@@ -455,10 +455,70 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
   row_count_ = r;
 }
 
+template <bool kBackward>
+Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse_mass) {
+  // One pass of resolveVelocities() when no row has friction, with the same arithmetic. Rows come
+  // grouped by their first particle (pairs sorted by it within a height layer, collider contacts
+  // by particle), and each row's update of v_a is the next row's input: v_a and w_a are kept in
+  // registers while the first particle stays the same, off the store-to-load round trip. A row's
+  // second particle is never the held one (b != a), so memory is current for it.
+  const std::size_t count = row_count_;
+  Real* const velocity = v.data();
+  const Real* const w = inverse_mass.data();
+  Real largest_change = 0.0;
+  std::uint32_t held = kNoParticle;
+  Vec3 va = Vec3::Zero();
+  Real wa = 0.0;
+  for (std::size_t step = 0; step < count; ++step) {
+    const std::size_t k = kBackward ? count - 1 - step : step;
+    Row& row = rows_[k];
+    if (!(row.flags & kActive)) continue;
+    if (row.a != held) {
+      if (held != kNoParticle) Eigen::Map<Vec3>(velocity + 3 * std::size_t{held}) = va;
+      held = row.a;
+      va = Eigen::Map<const Vec3>(velocity + 3 * std::size_t{held});
+      wa = w[held];
+    }
+    const bool b = row.flags & kHasB;
+    const Real w_sum = row.inverse_mass_sum;
+    // Depends on the row only, so it is computed ahead of the chain of velocity updates from
+    // row to row, which then multiplies instead of dividing.
+    const Real effective_mass = 1.0 / w_sum;
+    Eigen::Map<Vec3> vb(velocity + 3 * std::size_t{row.b});
+    Vec3 relative = va;
+    if (b) relative -= vb;
+    // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
+    // together / push apart in total, rods act either way.
+    Real total = row.total + (row.target - relative.dot(row.normal)) * effective_mass;
+    if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
+    const Real j = total - row.total;
+    row.total = total;
+    if (j != 0.0) {
+      va += (j * wa) * row.normal;
+      if (b) vb -= (j * w[row.b]) * row.normal;
+      if (wa > 0.0) touch(row.a);
+      if (b && w[row.b] > 0.0) touch(row.b);
+      largest_change = std::max(largest_change, std::abs(j * w_sum));
+    }
+  }
+  if (held != kNoParticle) Eigen::Map<Vec3>(velocity + 3 * std::size_t{held}) = va;
+  return largest_change;
+}
+
 int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                                        const CollisionSettings& settings) {
   const std::size_t count = row_count_;
   int passes = 0;
+  if (!any_friction_) {
+    while (passes < settings.max_iterations) {
+      ++passes;
+      // Alternate the sweep direction, as below.
+      const Real largest_change = passes % 2 == 0 ? frictionlessPass<true>(v, inverse_mass)
+                                                  : frictionlessPass<false>(v, inverse_mass);
+      if (largest_change <= settings.velocity_tolerance) break;
+    }
+    return passes;
+  }
   while (passes < settings.max_iterations) {
     ++passes;
     Real largest_change = 0.0;
