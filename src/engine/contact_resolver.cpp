@@ -457,26 +457,37 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
 
 template <bool kBackward>
 Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse_mass) {
-  // One pass of resolveVelocities() when no row has friction, with the same arithmetic. Rows come
-  // grouped by their first particle (pairs sorted by it within a height layer, collider contacts
-  // by particle), and each row's update of v_a is the next row's input: v_a and w_a are kept in
-  // registers while the first particle stays the same, off the store-to-load round trip. A row's
-  // second particle is never the held one (b != a), so memory is current for it.
+  // One pass of resolveVelocities() when no row has friction, with the same arithmetic written
+  // per component (Eigen's order: the dot product is (x + y) + z). Rows come grouped by their
+  // first particle (pairs sorted by it within a height layer, collider contacts by particle), and
+  // each row's update of v_a is the next row's input: v_a and w_a are kept in registers while the
+  // first particle stays the same, off the store-to-load round trip. A row's second particle is
+  // never the held one (b != a), so memory is current for it.
   const std::size_t count = row_count_;
   Real* const velocity = v.data();
   const Real* const w = inverse_mass.data();
   Real largest_change = 0.0;
   std::uint32_t held = kNoParticle;
-  Vec3 va = Vec3::Zero();
+  Real vax = 0.0;
+  Real vay = 0.0;
+  Real vaz = 0.0;
   Real wa = 0.0;
   for (std::size_t step = 0; step < count; ++step) {
     const std::size_t k = kBackward ? count - 1 - step : step;
     Row& row = rows_[k];
     if (!(row.flags & kActive)) continue;
     if (row.a != held) {
-      if (held != kNoParticle) Eigen::Map<Vec3>(velocity + 3 * std::size_t{held}) = va;
+      if (held != kNoParticle) {
+        Real* const p = velocity + 3 * std::size_t{held};
+        p[0] = vax;
+        p[1] = vay;
+        p[2] = vaz;
+      }
       held = row.a;
-      va = Eigen::Map<const Vec3>(velocity + 3 * std::size_t{held});
+      const Real* const p = velocity + 3 * std::size_t{held};
+      vax = p[0];
+      vay = p[1];
+      vaz = p[2];
       wa = w[held];
     }
     const bool b = row.flags & kHasB;
@@ -484,24 +495,47 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
     // Depends on the row only, so it is computed ahead of the chain of velocity updates from
     // row to row, which then multiplies instead of dividing.
     const Real effective_mass = 1.0 / w_sum;
-    Eigen::Map<Vec3> vb(velocity + 3 * std::size_t{row.b});
-    Vec3 relative = va;
-    if (b) relative -= vb;
+    const Real nx = row.normal.x();
+    const Real ny = row.normal.y();
+    const Real nz = row.normal.z();
+    Real* const vb = velocity + 3 * std::size_t{row.b};
+    Real rx = vax;
+    Real ry = vay;
+    Real rz = vaz;
+    if (b) {
+      rx -= vb[0];
+      ry -= vb[1];
+      rz -= vb[2];
+    }
     // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
     // together / push apart in total, rods act either way.
-    Real total = row.total + (row.target - relative.dot(row.normal)) * effective_mass;
+    const Real v_sep = (rx * nx + ry * ny) + rz * nz;
+    Real total = row.total + (row.target - v_sep) * effective_mass;
     if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
     const Real j = total - row.total;
     row.total = total;
     if (j != 0.0) {
-      va += (j * wa) * row.normal;
-      if (b) vb -= (j * w[row.b]) * row.normal;
+      const Real ja = j * wa;
+      vax += ja * nx;
+      vay += ja * ny;
+      vaz += ja * nz;
+      if (b) {
+        const Real jb = j * w[row.b];
+        vb[0] -= jb * nx;
+        vb[1] -= jb * ny;
+        vb[2] -= jb * nz;
+      }
       if (wa > 0.0) touch(row.a);
       if (b && w[row.b] > 0.0) touch(row.b);
       largest_change = std::max(largest_change, std::abs(j * w_sum));
     }
   }
-  if (held != kNoParticle) Eigen::Map<Vec3>(velocity + 3 * std::size_t{held}) = va;
+  if (held != kNoParticle) {
+    Real* const p = velocity + 3 * std::size_t{held};
+    p[0] = vax;
+    p[1] = vay;
+    p[2] = vaz;
+  }
   return largest_change;
 }
 
