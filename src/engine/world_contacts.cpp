@@ -537,7 +537,12 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
       if (c == nullptr) continue;
       c->a = a;
       c->b = b;
-      c->normal = distance > 1e-12 ? Vec3(d * (1.0 / distance)) : Vec3::UnitZ();
+      // Written in place (a Vec3 chosen by ?: went through a stack slot).
+      if (distance > 1e-12) {
+        c->normal = d * (1.0 / distance);
+      } else {
+        c->normal = Vec3::UnitZ();
+      }
       c->penetration = penetration;
       c->key = pairContactKey(ws.slots[a], ws.slots[b]);
       if (custom_materials) {
