@@ -513,7 +513,9 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
     Real total = row.total + (row.target - v_sep) * effective_mass;
     if (row.flags & kUnilateral) total = std::max(Real{0.0}, total);
     const Real j = total - row.total;
-    row.total = total;
+    // Stored only when it changed, so a row that did not act is not written back to memory.
+    // A unilateral total is never -0, so j == 0 means the same bits; a rod's is always stored.
+    if (j != 0.0 || !(row.flags & kUnilateral)) row.total = total;
     if (j != 0.0) {
       const Real ja = j * wa;
       vax += ja * nx;

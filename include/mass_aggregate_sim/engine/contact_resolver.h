@@ -88,8 +88,9 @@ class ContactResolver {
     kFriction = 8,     // a contact with friction > 0
     kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
   };
-  // The velocity phase's view of one constraint, in one cache line.
-  struct Row {
+  // The velocity phase's view of one constraint, in one cache line (aligned to it: a row the
+  // velocity pass leaves unchanged is then not written back, and each row is one line to fetch).
+  struct alignas(64) Row {
     std::uint32_t a;
     std::uint32_t b;  // a when there is no second particle (never moved: w_b = 0)
     std::uint8_t flags;
