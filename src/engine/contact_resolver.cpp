@@ -311,7 +311,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     rows_.resize(count);
     row_contact_.resize(count);
   }
-  penetration_.resize(count);
+  rows_are_contacts_ = !find_isolated;
   friction_coefficient_.resize(count);
   friction_total_.resize(count);
   next_warm_key_.resize(count);
@@ -349,7 +349,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     }
     const std::size_t row_index = r++;
     Row& row = rows_[row_index];
-    row_contact_[row_index] = static_cast<std::uint32_t>(k);
+    // Without isolated contacts every contact is a row, in order: row k is contact k.
+    if (find_isolated) row_contact_[row_index] = static_cast<std::uint32_t>(k);
     row.a = c.a;
     row.b = b ? c.b : c.a;
     row.kind = c.kind;
@@ -375,8 +376,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
       }
     }
     row.normal = c.normal;
-    row.inverse_mass_sum = w_sum;
-    penetration_[row_index] = c.penetration;
+    row.penetration = c.penetration;
     // Targets are measured on the velocities before any warm start.
     Vec3 relative_velocity = initial_velocity_.col(c.a);
     if (b) relative_velocity -= initial_velocity_.col(c.b);
@@ -395,7 +395,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
     const bool friction = c.kind == ContactKind::kContact && c.friction > 0.0;
     row.flags = static_cast<std::uint8_t>((b ? kHasB : 0) | (active ? kActive : 0) |
                                           (resting ? kResting : 0) | (friction ? kFriction : 0) |
-                                          (c.kind != ContactKind::kRod ? kUnilateral : 0));
+                                          (c.kind != ContactKind::kRod ? kUnilateral : 0) |
+                                          (!(w_sum <= 0.0) ? kMovable : 0));
     if (active && !(c.kind == ContactKind::kContact && resting)) {
       // Moves with more than resting contacts' impulses: followed row by row.
       mixed_stamp_[c.a] = stamp_;
@@ -491,7 +492,9 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
       wa = w[held];
     }
     const bool b = row.flags & kHasB;
-    const Real w_sum = row.inverse_mass_sum;
+    // As prepare() summed them (an active row's sum is positive).
+    const Real wb = b ? w[row.b] : 0.0;
+    const Real w_sum = wa + wb;
     // Depends on the row only, so it is computed ahead of the chain of velocity updates from
     // row to row, which then multiplies instead of dividing.
     const Real effective_mass = 1.0 / w_sum;
@@ -522,13 +525,13 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
       vay += ja * ny;
       vaz += ja * nz;
       if (b) {
-        const Real jb = j * w[row.b];
+        const Real jb = j * wb;
         vb[0] -= jb * nx;
         vb[1] -= jb * ny;
         vb[2] -= jb * nz;
       }
       if (wa > 0.0) touch(row.a);
-      if (b && w[row.b] > 0.0) touch(row.b);
+      if (b && wb > 0.0) touch(row.b);
       largest_change = std::max(largest_change, std::abs(j * w_sum));
     }
   }
@@ -565,12 +568,13 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
       Row& row = rows_[k];
       if (!(row.flags & kActive)) continue;
       const bool b = row.flags & kHasB;
-      const Real w_sum = row.inverse_mass_sum;
+      const Real wa = inverse_mass[row.a];
+      const Real wb = b ? inverse_mass[row.b] : 0.0;
+      // As prepare() summed them (an active row's sum is positive).
+      const Real w_sum = wa + wb;
       // Depends on the row only, so it is computed ahead of the chain of velocity updates from
       // row to row, which then multiplies instead of dividing.
       const Real effective_mass = 1.0 / w_sum;
-      const Real wa = inverse_mass[row.a];
-      const Real wb = b ? inverse_mass[row.b] : 0.0;
       Vec3 relative = v.col(row.a);
       if (b) relative -= v.col(row.b);
       // j = (v_target - v_sep) / (w_a + w_b), accumulated: contacts and cables never pull
@@ -673,7 +677,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
         // Velocities and impulses are final: keep the impulses for the next substep (in contact
         // order) and measure the closing speed left.
         const bool keep = (row.flags & kActive) && row.total != 0.0;
-        const std::size_t contact = row_contact_[k];
+        const std::size_t contact = rowContact(k);
         next_warm_normal_[contact] = keep ? row.total : 0.0;
         if (any_friction_) {
           next_warm_friction_[contact] =
@@ -686,24 +690,23 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
           // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
           const Real closing = row.kind == ContactKind::kRod
                                    ? std::abs(v_sep)
-                                   : std::min(Real{0.0}, penetration_[k] / h) - v_sep;
+                                   : std::min(Real{0.0}, row.penetration / h) - v_sep;
           max_closing = std::max(max_closing, closing);
         }
       }
-      const Real w_sum = row.inverse_mass_sum;
-      if (w_sum <= 0.0) continue;
+      if (!(row.flags & kMovable)) continue;
       Vec3 normal = row.normal;
       Real correction = 0.0;
       if (row.kind == ContactKind::kContact) {
         Vec3 moved = displacement_.col(row.a);
         if (b) moved -= displacement_.col(row.b);
-        const Real depth = penetration_[k] - moved.dot(normal);
+        const Real depth = row.penetration - moved.dot(normal);
         max_penetration = std::max(max_penetration, depth);
         if (depth <= slop) continue;
         correction = depth - 0.5 * slop;
       } else {
         Real error;
-        const Contact& link = contacts[row_contact_[k]];
+        const Contact& link = contacts[rowContact(k)];
         if (!linkState(link, x, normal, error)) continue;
         max_penetration =
             std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
@@ -715,6 +718,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
       }
       // dp_a = w_a / (w_a + w_b) d n,  dp_b = -w_b / (w_a + w_b) d n
       const Real wa = inverse_mass[row.a];
+      const Real w_sum = wa + (b ? inverse_mass[row.b] : 0.0);  // as prepare() summed them
       const Vec3 move_a = (correction * wa / w_sum) * normal;
       x.col(row.a) += move_a;
       displacement_.col(row.a) += move_a;
@@ -739,15 +743,15 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
     max_penetration = 0.0;
     for (std::size_t k = 0; k < count; ++k) {
       const Row& row = rows_[k];
-      if (row.inverse_mass_sum <= 0.0) continue;
+      if (!(row.flags & kMovable)) continue;
       if (row.kind == ContactKind::kContact) {
         Vec3 moved = displacement_.col(row.a);
         if (row.flags & kHasB) moved -= displacement_.col(row.b);
-        max_penetration = std::max(max_penetration, penetration_[k] - moved.dot(row.normal));
+        max_penetration = std::max(max_penetration, row.penetration - moved.dot(row.normal));
       } else {
         Vec3 normal;
         Real error;
-        if (!linkState(contacts[row_contact_[k]], x, normal, error)) continue;
+        if (!linkState(contacts[rowContact(k)], x, normal, error)) continue;
         max_penetration =
             std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
       }

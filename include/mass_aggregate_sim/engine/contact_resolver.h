@@ -87,6 +87,7 @@ class ContactResolver {
     kResting = 4,      // resting: target 0 (or touching), follows its impulse in position
     kFriction = 8,     // a contact with friction > 0
     kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
+    kMovable = 32,     // w_a + w_b > 0 (else never moved, never corrected)
   };
   // The velocity phase's view of one constraint, in one cache line (aligned to it: a row the
   // velocity pass leaves unchanged is then not written back, and each row is one line to fetch).
@@ -96,9 +97,11 @@ class ContactResolver {
     std::uint8_t flags;
     ContactKind kind;
     Vec3 normal;
-    Real inverse_mass_sum;  // w_a + w_b; 0: inactive
-    Real total;             // accumulated normal impulse this substep
-    Real target;            // target separating velocity
+    // How far a must move along normal (relative to b): the contact's overlap (links: length
+    // error). w_a + w_b is summed again where needed from the inverse masses (same bits).
+    Real penetration;
+    Real total;   // accumulated normal impulse this substep
+    Real target;  // target separating velocity
   };
 
   void touch(const std::uint32_t i) {
@@ -155,6 +158,11 @@ class ContactResolver {
   std::vector<Row> rows_;  // the constraints that are not isolated: [0, row_count_)
   std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
+  // Row k's index in the contacts (k itself when isolated contacts were not looked for).
+  std::size_t rowContact(const std::size_t k) const {
+    return rows_are_contacts_ ? k : row_contact_[k];
+  }
+  bool rows_are_contacts_ = false;
   // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
   std::vector<std::uint64_t> uses_;
   bool any_shared_ = false;        // some particle is in more than one contact
@@ -172,7 +180,6 @@ class ContactResolver {
   Real isolated_max_penetration_ = 0.0;
   Real isolated_max_closing_ = 0.0;
   bool isolated_corrected_ = false;
-  std::vector<Real> penetration_;  // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
