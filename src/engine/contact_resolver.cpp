@@ -8,6 +8,8 @@ namespace engine {
 namespace {
 
 constexpr Real kMinLinkLength = 1e-12;
+// How many rows ahead the passes ask for their data (a row is a cache line).
+constexpr std::size_t kPrefetchAhead = 8;
 
 bool hasB(const Contact& c) { return c.b != kNoParticle; }
 
@@ -348,6 +350,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, Vec3Map& x, Vec3Ma
       continue;
     }
     const std::size_t row_index = r++;
+    // The contacts and rows stream through memory faster than the hardware prefetch follows
+    // (a pile's do not fit in the caches): ask for them a few rows ahead.
+    __builtin_prefetch(&contacts[std::min(k + kPrefetchAhead, count - 1)]);
+    __builtin_prefetch(&rows_[std::min(row_index + kPrefetchAhead, count - 1)], 1);
     Row& row = rows_[row_index];
     // Without isolated contacts every contact is a row, in order: row k is contact k.
     if (find_isolated) row_contact_[row_index] = static_cast<std::uint32_t>(k);
@@ -475,6 +481,8 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
   Real wa = 0.0;
   for (std::size_t step = 0; step < count; ++step) {
     const std::size_t k = kBackward ? count - 1 - step : step;
+    __builtin_prefetch(&rows_[kBackward ? (k >= kPrefetchAhead ? k - kPrefetchAhead : 0)
+                                        : std::min(k + kPrefetchAhead, count - 1)]);
     Row& row = rows_[k];
     if (!(row.flags & kActive)) continue;
     if (row.a != held) {
@@ -671,6 +679,8 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
     const bool backward = passes % 2 == 0;
     for (std::size_t step = 0; step < count; ++step) {
       const std::size_t k = backward ? count - 1 - step : step;
+      __builtin_prefetch(&rows_[backward ? (k >= kPrefetchAhead ? k - kPrefetchAhead : 0)
+                                         : std::min(k + kPrefetchAhead, count - 1)]);
       const Row& row = rows_[k];
       const bool b = row.flags & kHasB;
       if (passes == 1) {
