@@ -9,7 +9,7 @@ namespace {
 
 constexpr Real kMinLinkLength = 1e-12;
 // How many rows ahead the passes ask for their data (a row is a cache line).
-constexpr std::size_t kPrefetchAhead = 8;
+constexpr std::size_t kPrefetchAhead = 32;
 
 bool hasB(const Contact& c) { return c.b != kNoParticle; }
 
