@@ -515,11 +515,15 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   if (settings.particle_collisions) {
     const bool filter = !settings.collide_linked && !ws.linked_pairs.empty();
     const bool custom_materials = custom_material_count_ > 0;
+    // The contacts of a large pile (beyond the caches) are written faster than the hardware
+    // prefetch fetches their lines: ask for them a few contacts ahead (the vector keeps its
+    // capacity from substep to substep).
+    const bool prefetch = ws.pairs.size() * sizeof(Contact) > (std::size_t{8} << 20);
     for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
-      // The contacts of a large pile are written faster than the hardware prefetch fetches
-      // their lines: ask for them a few contacts ahead (the vector keeps its capacity).
       const std::size_t ahead = ws.contacts.size() + 32;
-      if (ahead < ws.contacts.capacity()) __builtin_prefetch(ws.contacts.data() + ahead, 1);
+      if (prefetch && ahead < ws.contacts.capacity()) {
+        __builtin_prefetch(ws.contacts.data() + ahead, 1);
+      }
       const auto [a, b] = ws.pairs[k];
       if (inverse_mass[a] <= 0.0 && inverse_mass[b] <= 0.0) continue;
       if (filter &&
