@@ -673,7 +673,8 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
   const std::size_t count = row_count_;
   const bool prefetch = count * sizeof(Row) > kStreamingBytes;
   const Real slop = settings.penetration_slop;
-  Real& max_penetration = stats.max_penetration;
+  // Kept in a register, not in stats (a store and reload on every row), and stored at the end.
+  Real max_penetration = stats.max_penetration;
   Real max_closing = 0.0;
   if (!any_friction_) {
     next_warm_friction_.clear();
@@ -779,6 +780,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
       }
     }
   }
+  stats.max_penetration = max_penetration;
   return passes;
 }
 
