@@ -520,9 +520,8 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
     // capacity from substep to substep).
     const bool prefetch = ws.pairs.size() * sizeof(Contact) > (std::size_t{8} << 20);
     for (std::size_t k = 0; k < ws.pairs.size(); ++k) {
-      const std::size_t ahead = ws.contacts.size() + 32;
-      if (prefetch && ahead < ws.contacts.capacity()) {
-        __builtin_prefetch(ws.contacts.data() + ahead, 1);
+      if (prefetch && ws.contacts.size() + 32 < ws.contacts.capacity()) {
+        __builtin_prefetch(ws.contacts.data() + ws.contacts.size() + 32, 1);
       }
       const auto [a, b] = ws.pairs[k];
       if (inverse_mass[a] <= 0.0 && inverse_mass[b] <= 0.0) continue;
