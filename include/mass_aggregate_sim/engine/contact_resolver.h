@@ -105,17 +105,21 @@ class ContactResolver {
     kResting = 4,      // resting: target 0 (or touching), follows its impulse in position
     kFriction = 8,     // a contact with friction > 0
     kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
+    kMovable = 32,     // w_a + w_b > 0 (else never moved, never corrected)
   };
-  // The velocity phase's view of one constraint, in one cache line.
-  struct Row {
+  // The velocity phase's view of one constraint, in one cache line (aligned to it: a row the
+  // velocity pass leaves unchanged is then not written back, and each row is one line to fetch).
+  struct alignas(64) Row {
     std::uint32_t a;
     std::uint32_t b;  // a when there is no second particle (never moved: w_b = 0)
     std::uint8_t flags;
     ContactKind kind;
     Vec3 normal;
-    Real inverse_mass_sum;  // w_a + w_b; 0: inactive
-    Real total;             // accumulated normal impulse this substep
-    Real target;            // target separating velocity
+    // How far a must move along normal (relative to b): the contact's overlap (links: length
+    // error). w_a + w_b is summed again where needed from the inverse masses (same bits).
+    Real penetration;
+    Real total;   // accumulated normal impulse this substep
+    Real target;  // target separating velocity
   };
 
   void touch(const std::uint32_t i) {
@@ -169,6 +173,9 @@ class ContactResolver {
                      ContactStats& stats);
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
+  // One velocity pass when no row has friction; returns the largest change.
+  template <bool kBackward>
+  Real frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse_mass);
   // Moves each particle with its resting contacts' impulses (see resolve()).
   void followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass);
   void indexWarmByKey() const;
@@ -185,6 +192,11 @@ class ContactResolver {
   std::vector<Row> rows_;  // the constraints that are not isolated: [0, row_count_)
   std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
+  // Row k's index in the contacts (k itself when isolated contacts were not looked for).
+  std::size_t rowContact(const std::size_t k) const {
+    return rows_are_contacts_ ? k : row_contact_[k];
+  }
+  bool rows_are_contacts_ = false;
   // Per particle: (stamp_ << 1) when in one contact this substep, | 1 when in more.
   std::vector<std::uint64_t> uses_;
   bool any_shared_ = false;        // some particle is in more than one contact
@@ -214,7 +226,6 @@ class ContactResolver {
   std::size_t parts_size_ = 0;          // contacts added by addPart() this substep
   std::vector<LinkGeometry> no_links_;  // always empty
   std::vector<Contact> no_contacts_;    // always empty
-  std::vector<Real> penetration_;       // per row: the contact's overlap (links: length error)
   std::vector<Real> friction_coefficient_;
   std::vector<Vec3> friction_total_;  // per row: accumulated friction impulse
   // Warm starts: what each contact of the last substep ended it with (key, normal impulse,
