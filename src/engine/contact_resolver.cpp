@@ -100,13 +100,77 @@ void ContactResolver::beginParts(const Eigen::Index particle_count, const Real h
                                  const Real position_weight) {
   beginSubstep(particle_count, h, position_weight, no_links_);
   parts_size_ = 0;
+  parts_prepared_ = false;
+}
+
+std::size_t ContactResolver::addPlaneGroups(const BatchPlane* const planes,
+                                            const std::size_t plane_count, const std::size_t begin,
+                                            const std::size_t end, const std::uint32_t* const slots,
+                                            const ConstScalarMap& radius, Vec3Map x, Vec3Map v,
+                                            const ConstScalarMap& inverse_mass,
+                                            const Eigen::Ref<const Vec3Array>& acceleration,
+                                            const Real h, const Real slop, const Real margin) {
+  if (end < begin + 4 || acceleration.outerStride() != 3) return begin;
+  if (!parts_prepared_) {
+    beginPrepare(v, acceleration, false);
+    parts_prepared_ = true;
+  }
+  // Room for a contact per particle (never more: a particle meeting two planes stops the groups).
+  const std::size_t room = parts_size_ + (end - begin);
+  if (next_warm_key_.size() < room) {
+    next_warm_key_.resize(room);
+    next_warm_normal_.resize(room);
+  }
+  if (!next_warm_friction_.empty() && next_warm_friction_.size() < room) {
+    next_warm_friction_.resize(room, Vec3::Zero());
+  }
+  const std::size_t touched_before = touched_.size();
+  touched_.resize(touched_before + (end - begin));
+  PlaneGroupInputs in;
+  in.planes = planes;
+  in.plane_count = plane_count;
+  in.begin = begin;
+  in.end = end;
+  in.slots = slots;
+  in.radius = radius.data();
+  in.inverse_mass = inverse_mass.data();
+  in.acceleration = acceleration.data();
+  in.margin = margin;
+  in.h = h;
+  in.slop = slop;
+  in.follow_scale = follow_scale_;
+  in.inverse_follow_scale = inverse_follow_scale_;
+  in.warm_key = warm_key_.data();
+  in.warm_normal = warm_normal_.data();
+  in.warm_size = warm_key_.size();
+  PlaneGroupOutputs out;
+  out.cursor = warm_cursor_;
+  out.next_warm_key = next_warm_key_.data() + parts_size_;
+  out.next_warm_normal = next_warm_normal_.data() + parts_size_;
+  out.touched = touched_.data() + touched_before;
+  out.max_penetration = isolated_max_penetration_;
+  out.max_closing = isolated_max_closing_;
+  out.corrected = isolated_corrected_;
+  const std::size_t stopped = solvePlaneGroups(in, x.data(), v.data(), out);
+  touched_.resize(touched_before + out.touched_count);
+  warm_cursor_ = out.cursor;
+  parts_size_ += out.contacts;
+  prepared_count_ = parts_size_;
+  isolated_count_ += out.contacts;
+  isolated_max_penetration_ = out.max_penetration;
+  isolated_max_closing_ = out.max_closing;
+  isolated_corrected_ = out.corrected;
+  return stopped;
 }
 
 void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const Real slop, const IsolatedContacts isolated) {
-  if (parts_size_ == 0) beginPrepare(v, acceleration, false);
+  if (!parts_prepared_) {
+    beginPrepare(v, acceleration, false);
+    parts_prepared_ = true;
+  }
   if (isolated == IsolatedContacts::kFind) countParticleUses(part);
   prepare(part, parts_size_, x, v, inverse_mass, acceleration, h, slop, isolated);
   parts_size_ += part.size();
@@ -115,7 +179,7 @@ void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
 void ContactResolver::finishParts(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                                   const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                                   const CollisionSettings& settings, ContactStats& stats) {
-  if (parts_size_ == 0) beginPrepare(v, acceleration, false);  // no contacts: empty phases
+  if (!parts_prepared_) beginPrepare(v, acceleration, false);  // no contacts: empty phases
   finishSubstep(no_contacts_, x, v, inverse_mass, h, settings, stats);
 }
 
@@ -154,7 +218,7 @@ void ContactResolver::finishSubstep(const std::vector<Contact>& contacts, Vec3Ma
                                     const CollisionSettings& settings, ContactStats& stats) {
   next_warm_key_.resize(prepared_count_);
   next_warm_normal_.resize(prepared_count_);
-  if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_);
+  if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);

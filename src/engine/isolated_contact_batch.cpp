@@ -100,61 +100,38 @@ inline void transposeOut(const Real4 (&in)[3], Real* p) {
   simd::store(p + 8, __builtin_shufflevector(in[2], xy3, 2, 4, 5, 3));
 }
 
-template <bool kFollow>
-inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const std::size_t e,
-                                                     Real* __restrict x, Real* __restrict v,
-                                                     Real* __restrict next_warm_normal,
-                                                     std::uint32_t* __restrict touched_out,
-                                                     Running& running) {
-  std::uint32_t contact[4];
-  const Contact* c[4];
-  std::size_t particle[4];
-  for (int l = 0; l < 4; ++l) {
-    contact[l] = lanes.contact_index[e + l];
-    c[l] = lanes.contacts + contact[l];
-    particle[l] = c[l]->a;
-  }
-  const Real4 w = {lanes.inverse_mass[particle[0]], lanes.inverse_mass[particle[1]],
-                   lanes.inverse_mass[particle[2]], lanes.inverse_mass[particle[3]]};
-  const Real4 penetration = {c[0]->penetration, c[1]->penetration, c[2]->penetration,
-                             c[3]->penetration};
-  const Real4 restitution = {c[0]->restitution, c[1]->restitution, c[2]->restitution,
-                             c[3]->restitution};
-  const Real4 previous = simd::load(lanes.previous_impulse + e);
-  const Real4 zero = broadcast(0.0);
-  const Mask4 movable = w > zero;
-  // w_sum <= 0: never active, never corrected.
-  const Mask4 live = ~(w <= zero);
+// One contact per lane (no b, no friction), as solveIsolated<false> solves it: in.velocity and
+// in.position come back solved, `total` is the impulse to keep, `active` and `touched` say which
+// lanes count in the stats and which particles changed. Lanes outside `live` change nothing.
+struct LaneContacts {
+  Real4 w;  // inverse masses
+  Real4 penetration;
+  Real4 restitution;
+  Real4 previous;  // warm starts
   Real4 normal[3];
-  Real4 initial[3];
+  Real4 velocity[3];  // in: initial
   Real4 position[3];
   Real4 acceleration[3];
-  for (int k = 0; k < 3; ++k) {
-    normal[k] = Real4{c[0]->normal[k], c[1]->normal[k], c[2]->normal[k], c[3]->normal[k]};
-  }
-  // Four particles one after the other (a row of balls on the ground): three loads and a transpose
-  // per array instead of twelve single loads.
-  const bool consecutive = particle[1] == particle[0] + 1 && particle[2] == particle[0] + 2 &&
-                           particle[3] == particle[0] + 3 && lanes.acceleration_stride == 3;
-  if (consecutive) {
-    const std::size_t first = 3 * particle[0];
-    transposeIn(x + first, position);
-    transposeIn(v + first, initial);
-    transposeIn(lanes.acceleration + first, acceleration);
-  } else {
-    const std::ptrdiff_t stride = lanes.acceleration_stride;
-    for (int k = 0; k < 3; ++k) {
-      initial[k] = Real4{v[3 * particle[0] + k], v[3 * particle[1] + k], v[3 * particle[2] + k],
-                         v[3 * particle[3] + k]};
-      position[k] = Real4{x[3 * particle[0] + k], x[3 * particle[1] + k], x[3 * particle[2] + k],
-                          x[3 * particle[3] + k]};
-      acceleration[k] =
-          Real4{lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[0]) + k],
-                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[1]) + k],
-                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[2]) + k],
-                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[3]) + k]};
-    }
-  }
+  Mask4 live;
+  Real4 total;
+  Mask4 active;
+  Mask4 touched;
+};
+
+template <bool kFollow>
+inline __attribute__((always_inline)) void solveLanes(const Lanes& lanes, LaneContacts& in,
+                                                      Running& running) {
+  const Real4 zero = broadcast(0.0);
+  const Real4 w = in.w;
+  const Real4 penetration = in.penetration;
+  const Real4 restitution = in.restitution;
+  const Real4 previous = in.previous;
+  const Mask4 movable = w > zero;
+  const Mask4 live = in.live;
+  const Real4(&normal)[3] = in.normal;
+  Real4(&position)[3] = in.position;
+  Real4(&acceleration)[3] = in.acceleration;
+  const Real4 initial[3] = {in.velocity[0], in.velocity[1], in.velocity[2]};
   for (int k = 0; k < 3; ++k) acceleration[k] = select(movable, acceleration[k], zero);
   const Real4 h = broadcast(lanes.h);
   const Real4 v_sep = dot(initial, normal);
@@ -187,7 +164,7 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
   }
 
   Real4 total = maxZero(previous);
-  Real4 velocity[3];
+  Real4(&velocity)[3] = in.velocity;
   const Mask4 warm = total != zero;
   Mask4 touched = warm;
   for (int k = 0; k < 3; ++k)
@@ -234,18 +211,97 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
   running.max_penetration =
       select(active, runningMax(running.max_penetration, depth), running.max_penetration);
   running.corrected |= corrects;
-  // Lanes not touched store what they loaded: the same bits (an inactive lane's velocity may have
+  // Lanes not touched keep what they loaded: the same bits (an inactive lane's velocity may have
   // taken its warm start in the lanes, which the scalar code never applies).
   for (int k = 0; k < 3; ++k) velocity[k] = select(touched, velocity[k], initial[k]);
+  in.total = total;
+  in.active = active;
+  in.touched = touched;
+}
+
+template <bool kFollow>
+inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const std::size_t e,
+                                                     Real* __restrict x, Real* __restrict v,
+                                                     Real* __restrict next_warm_normal,
+                                                     std::uint32_t* __restrict touched_out,
+                                                     Running& running) {
+  std::uint32_t contact[4];
+  const Contact* c[4];
+  std::size_t particle[4];
+  for (int l = 0; l < 4; ++l) {
+    contact[l] = lanes.contact_index[e + l];
+    c[l] = lanes.contacts + contact[l];
+    particle[l] = c[l]->a;
+  }
+  const Real4 w = {lanes.inverse_mass[particle[0]], lanes.inverse_mass[particle[1]],
+                   lanes.inverse_mass[particle[2]], lanes.inverse_mass[particle[3]]};
+  const Real4 penetration = {c[0]->penetration, c[1]->penetration, c[2]->penetration,
+                             c[3]->penetration};
+  const Real4 restitution = {c[0]->restitution, c[1]->restitution, c[2]->restitution,
+                             c[3]->restitution};
+  const Real4 previous = simd::load(lanes.previous_impulse + e);
+  const Real4 zero = broadcast(0.0);
+  const Mask4 movable = w > zero;
+  // w_sum <= 0: never active, never corrected.
+  const Mask4 live = ~(w <= zero);
+  const auto normal_component = [&](const int k) {
+    return Real4{c[0]->normal[k], c[1]->normal[k], c[2]->normal[k], c[3]->normal[k]};
+  };
+  const Real4 normal[3] = {normal_component(0), normal_component(1), normal_component(2)};
+  Real4 initial[3];
+  Real4 position[3];
+  Real4 acceleration[3];
+  // Four particles one after the other (a row of balls on the ground): three loads and a transpose
+  // per array instead of twelve single loads.
+  const bool consecutive = particle[1] == particle[0] + 1 && particle[2] == particle[0] + 2 &&
+                           particle[3] == particle[0] + 3 && lanes.acceleration_stride == 3;
+  if (consecutive) {
+    const std::size_t first = 3 * particle[0];
+    transposeIn(x + first, position);
+    transposeIn(v + first, initial);
+    transposeIn(lanes.acceleration + first, acceleration);
+  } else {
+    const std::ptrdiff_t stride = lanes.acceleration_stride;
+    for (int k = 0; k < 3; ++k) {
+      initial[k] = Real4{v[3 * particle[0] + k], v[3 * particle[1] + k], v[3 * particle[2] + k],
+                         v[3 * particle[3] + k]};
+      position[k] = Real4{x[3 * particle[0] + k], x[3 * particle[1] + k], x[3 * particle[2] + k],
+                          x[3 * particle[3] + k]};
+      acceleration[k] =
+          Real4{lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[0]) + k],
+                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[1]) + k],
+                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[2]) + k],
+                lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[3]) + k]};
+    }
+  }
+  for (int k = 0; k < 3; ++k) acceleration[k] = select(movable, acceleration[k], zero);
+  LaneContacts lane{w,
+                    penetration,
+                    restitution,
+                    previous,
+                    {normal[0], normal[1], normal[2]},
+                    {initial[0], initial[1], initial[2]},
+                    {position[0], position[1], position[2]},
+                    {acceleration[0], acceleration[1], acceleration[2]},
+                    live,
+                    zero,
+                    Mask4{},
+                    Mask4{}};
+  solveLanes<kFollow>(lanes, lane, running);
+  const Real4(&velocity)[3] = lane.velocity;
+  const Real4(&solved)[3] = lane.position;
+  const Real4 total = lane.total;
+  const Mask4 active = lane.active;
+  const Mask4 touched = lane.touched;
   if (consecutive) {
     const std::size_t first = 3 * particle[0];
     transposeOut(velocity, v + first);
-    transposeOut(position, x + first);
+    transposeOut(solved, x + first);
   } else {
     for (int l = 0; l < 4; ++l) {
       for (int k = 0; k < 3; ++k) {
         v[3 * particle[l] + k] = velocity[k][l];
-        x[3 * particle[l] + k] = position[k][l];
+        x[3 * particle[l] + k] = solved[k][l];
       }
     }
   }
@@ -284,11 +340,122 @@ MAS_SIMD_CLONES void dispatch(const IsolatedBatchInputs& in, Real* x, Real* v,
   }
 }
 
+// Whether the contact named `key` is the next warm start (a settled scene lists its contacts in
+// the same order every substep); its impulse in `previous`.
+inline bool warmAtCursor(const PlaneGroupInputs& in, std::size_t& cursor, const std::uint64_t key,
+                         Real& previous) {
+  if (cursor >= in.warm_size || in.warm_key[cursor] != key) return false;
+  previous = in.warm_normal[cursor++];
+  return true;
+}
+
+// One group of four consecutive particles from `i`; false (nothing written) when a particle
+// meets two planes or a warm start is not at the cursor.
+template <bool kFollow>
+inline __attribute__((always_inline)) bool solvePlaneGroup(const PlaneGroupInputs& in,
+                                                           const Lanes& lanes, const std::size_t i,
+                                                           Real* __restrict x, Real* __restrict v,
+                                                           PlaneGroupOutputs& out,
+                                                           Running& running) {
+  const Real4 zero = broadcast(0.0);
+  const Real4 w = simd::load(in.inverse_mass + i);
+  // World::generateColliderContacts() skips particles with w <= 0.
+  const Mask4 live = ~(w <= zero);
+  Real4 position[3];
+  transposeIn(x + 3 * i, position);
+  const Real4 radius = simd::load(in.radius + i);
+  // sphereVsPlane as the generation computes it: p = r - (n.x - offset), a contact when p >
+  // -margin.
+  Mask4 one{};
+  Mask4 more{};
+  Mask4 plane{};
+  Real4 penetration = zero;
+  Real4 restitution = zero;
+  Real4 normal[3] = {zero, zero, zero};
+  for (std::size_t p = 0; p < in.plane_count; ++p) {
+    const BatchPlane& c = in.planes[p];
+    const Real4 distance =
+        (broadcast(c.normal[0]) * position[0] + broadcast(c.normal[1]) * position[1]) +
+        broadcast(c.normal[2]) * position[2];
+    const Real4 depth = radius - (distance - broadcast(c.offset));
+    const Mask4 touches = live & (depth > broadcast(-in.margin));
+    more |= one & touches;
+    one |= touches;
+    penetration = select(touches, depth, penetration);
+    restitution = select(touches, broadcast(c.restitution), restitution);
+    for (int k = 0; k < 3; ++k) normal[k] = select(touches, broadcast(c.normal[k]), normal[k]);
+    plane = (plane & ~touches) | ((Mask4{} + static_cast<std::int64_t>(p)) & touches);
+  }
+  if (anySet(more)) return false;
+  std::size_t cursor = out.cursor;
+  Real previous[4] = {0.0, 0.0, 0.0, 0.0};
+  std::uint64_t key[4] = {0, 0, 0, 0};
+  for (int l = 0; l < 4; ++l) {
+    if (!one[l]) continue;
+    key[l] = colliderContactKey(in.slots[i + l], in.planes[plane[l]].id);
+    if (!warmAtCursor(in, cursor, key[l], previous[l])) return false;
+  }
+  out.cursor = cursor;
+  LaneContacts lane{w,
+                    penetration,
+                    restitution,
+                    simd::load(previous),
+                    {normal[0], normal[1], normal[2]},
+                    {},
+                    {position[0], position[1], position[2]},
+                    {},
+                    one,
+                    zero,
+                    Mask4{},
+                    Mask4{}};
+  transposeIn(v + 3 * i, lane.velocity);
+  transposeIn(in.acceleration + 3 * i, lane.acceleration);
+  const Mask4 movable = w > zero;
+  for (int k = 0; k < 3; ++k) lane.acceleration[k] = select(movable, lane.acceleration[k], zero);
+  solveLanes<kFollow>(lanes, lane, running);
+  transposeOut(lane.velocity, v + 3 * i);
+  transposeOut(lane.position, x + 3 * i);
+  for (int l = 0; l < 4; ++l) {
+    if (!one[l]) continue;
+    out.next_warm_key[out.contacts] = key[l];
+    out.next_warm_normal[out.contacts] = lane.active[l] ? lane.total[l] : 0.0;
+    ++out.contacts;
+    out.touched[out.touched_count] = static_cast<std::uint32_t>(i + l);
+    out.touched_count += static_cast<std::size_t>(lane.touched[l] & 1);
+  }
+  return true;
+}
+
+MAS_SIMD_CLONES void planeDispatch(const PlaneGroupInputs& in, Real* x, Real* v,
+                                   PlaneGroupOutputs& out) {
+  const Lanes lanes{nullptr, nullptr, nullptr, in.inverse_mass, in.acceleration,
+                    3,       in.h,    in.slop, in.follow_scale, in.inverse_follow_scale};
+  Running running{Real4{}, Real4{}, Mask4{}, 0};  // +0 maxima, nothing corrected or written
+  const bool follow = in.follow_scale > 0.0;
+  std::size_t i = in.begin;
+  for (; i + 4 <= in.end; i += 4) {
+    const bool solved = follow ? solvePlaneGroup<true>(in, lanes, i, x, v, out, running)
+                               : solvePlaneGroup<false>(in, lanes, i, x, v, out, running);
+    if (!solved) break;
+  }
+  out.stopped = i;
+  for (int l = 0; l < 4; ++l) {
+    out.max_closing = std::max(out.max_closing, running.max_closing[l]);
+    out.max_penetration = std::max(out.max_penetration, running.max_penetration[l]);
+    out.corrected = out.corrected || running.corrected[l] != 0;
+  }
+}
+
 }  // namespace
 
 void solveIsolatedBatch(const IsolatedBatchInputs& in, Real* x, Real* v,
                         IsolatedBatchOutputs& out) {
   dispatch(in, x, v, out);
+}
+
+std::size_t solvePlaneGroups(const PlaneGroupInputs& in, Real* x, Real* v, PlaneGroupOutputs& out) {
+  planeDispatch(in, x, v, out);
+  return out.stopped;
 }
 
 }  // namespace engine

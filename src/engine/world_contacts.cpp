@@ -624,21 +624,44 @@ void World::resolveColliderContactsInParts(ContactWorkspace& ws, const Real h) {
   constexpr std::size_t kPartParticles = 256;
   const std::size_t n = particles_.size();
   const CollisionSettings& settings = collision_settings_;
+  // Frictionless planes only and no swept tests: groups of four particles that each meet at most
+  // one plane go through solvePlaneGroups(), with no Contact written.
+  const bool swept = settings.continuous && static_cast<std::size_t>(ws.substep_start.cols()) == n;
+  bool plane_groups = !swept && colliders_.spheres.empty() && colliders_.boxes.empty() &&
+                      colliders_.capsules.empty();
+  ws.batch_planes.clear();
+  for (const PlaneCollider& c : colliders_.planes) {
+    plane_groups = plane_groups && !(c.material.friction > 0.0);
+    ws.batch_planes.push_back(BatchPlane{
+        {c.normal.x(), c.normal.y(), c.normal.z()}, c.offset, c.material.restitution, c.id});
+  }
   ws.resolver.beginParts(static_cast<Eigen::Index>(n), h, positionWeight(config_.integrator));
-  std::size_t contacts = 0;
   for (std::size_t begin = 0; begin < n && !colliders_.empty(); begin += kPartParticles) {
     const std::size_t end = std::min(n, begin + kPartParticles);
-    ws.contacts.clear();
-    const bool in_two = generateColliderContacts(ws, begin, end, dropped_this_step_);
-    contacts += ws.contacts.size();
-    ws.resolver.addPart(ws.contacts, particles_.positions(), particles_.velocities(),
-                        particles_.inverseMasses(), acceleration_, h, settings.penetration_slop,
-                        in_two ? IsolatedContacts::kFind : IsolatedContacts::kAll);
+    std::size_t i = begin;
+    while (i < end) {
+      if (plane_groups) {
+        i = ws.resolver.addPlaneGroups(
+            ws.batch_planes.data(), ws.batch_planes.size(), i, end, ws.slots.data(),
+            ConstScalarMap(particles_.radii().data(), n), particles_.positions(),
+            particles_.velocities(), particles_.inverseMasses(), acceleration_, h,
+            settings.penetration_slop, contactMargin(settings));
+        if (i >= end) break;
+      }
+      // The group the lanes stopped at (or the whole part): made and solved the general way.
+      const std::size_t stop = plane_groups ? std::min(end, i + 4) : end;
+      ws.contacts.clear();
+      const bool in_two = generateColliderContacts(ws, i, stop, dropped_this_step_);
+      ws.resolver.addPart(ws.contacts, particles_.positions(), particles_.velocities(),
+                          particles_.inverseMasses(), acceleration_, h, settings.penetration_slop,
+                          in_two ? IsolatedContacts::kFind : IsolatedContacts::kAll);
+      i = stop;
+    }
   }
   ws.resolver.finishParts(particles_.positions(), particles_.velocities(),
                           particles_.inverseMasses(), acceleration_, h, settings,
                           last_contact_stats_);
-  last_contact_stats_.contacts = contacts;
+  last_contact_stats_.contacts = ws.resolver.partsContactCount();
 }
 
 void World::resolveContacts(const Real h) {

@@ -1,9 +1,10 @@
 // With only collider contacts (no particle collisions, no links) the world makes and solves them in
-// parts of 256 particles (World::resolveColliderContactsInParts); with a contact limit it makes
-// them all first and resolves them at once. Both must give bit-identical states, warm starts
-// included (stateHash), and the same stats: the scene mixes resting, bouncing and sliding balls,
-// balls in the corners of a box (two contacts: rows), friction and every collider shape, over
-// more than two parts.
+// parts of 256 particles (World::resolveColliderContactsInParts), with only frictionless planes
+// four particles at a time in vector lanes without writing a Contact (solvePlaneGroups); with a
+// contact limit it makes them all first and resolves them at once. Both must give bit-identical
+// states, warm starts included (stateHash), and the same stats: the scene mixes resting, bouncing
+// and sliding balls, balls in the corners of a box (two contacts: rows), friction and every
+// collider shape, over more than two parts; and the same with frictionless planes only.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,22 +18,38 @@ namespace {
 
 constexpr int kBalls = 700;  // three parts: 256, 256, 188
 
-World boxWorld(const Integrator integrator, const std::size_t max_contacts) {
+void addShapes(World& world);
+void addBalls(World& world);
+
+struct BoxScene {
+  bool planes_only = false;  // no sphere, box or capsule, and no friction
+  std::size_t max_contacts = 0;
+};
+
+World boxWorld(const Integrator integrator, const BoxScene& scene) {
   WorldConfig config;
   config.dt = 1.0 / 60.0;
   config.integrator = integrator;
   config.gravity = Vec3(0.0, -9.81, 0.0);
   World world(config);
   CollisionSettings settings;
-  settings.max_contacts = max_contacts;
+  settings.max_contacts = scene.max_contacts;
   EXPECT_TRUE(world.setCollisionSettings(settings));
   // A 4 m box: floor (with friction) and four walls (without); a sphere, a box and a capsule on
   // the floor.
-  EXPECT_TRUE(world.addPlane(PlaneCollider{Vec3::UnitY(), 0.0, Material{0.3, 0.4}}).isOk());
+  const Real floor_friction = scene.planes_only ? 0.0 : 0.4;
+  EXPECT_TRUE(
+      world.addPlane(PlaneCollider{Vec3::UnitY(), 0.0, Material{0.3, floor_friction}}).isOk());
   EXPECT_TRUE(world.addPlane(PlaneCollider{Vec3::UnitX(), -2.0, Material{0.5, 0.0}}).isOk());
   EXPECT_TRUE(world.addPlane(PlaneCollider{-Vec3::UnitX(), -2.0, Material{0.5, 0.0}}).isOk());
   EXPECT_TRUE(world.addPlane(PlaneCollider{Vec3::UnitZ(), -2.0, Material{0.5, 0.0}}).isOk());
   EXPECT_TRUE(world.addPlane(PlaneCollider{-Vec3::UnitZ(), -2.0, Material{0.5, 0.0}}).isOk());
+  if (!scene.planes_only) addShapes(world);
+  addBalls(world);
+  return world;
+}
+
+void addShapes(World& world) {
   SphereCollider sphere;
   sphere.center = Vec3(1.0, 0.0, 1.0);
   sphere.radius = 0.5;
@@ -46,6 +63,9 @@ World boxWorld(const Integrator integrator, const std::size_t max_contacts) {
   capsule.b = Vec3(1.0, 0.2, -1.0);
   capsule.radius = 0.2;
   EXPECT_TRUE(world.addCapsule(capsule).isOk());
+}
+
+void addBalls(World& world) {
   // A 26 x 26 grid over the floor (its edge rows in the walls' reach, its corners in two), at
   // heights and speeds that vary from ball to ball, some resting from the start.
   for (int i = 0; i < kBalls; ++i) {
@@ -60,14 +80,15 @@ World boxWorld(const Integrator integrator, const std::size_t max_contacts) {
     spec.damping = 0.99;
     EXPECT_TRUE(world.addParticle(spec).isOk());
   }
-  return world;
 }
 
 class ColliderContactParts : public ::testing::TestWithParam<Integrator> {};
 
-TEST_P(ColliderContactParts, SameStateAsAllAtOnce) {
-  World in_parts = boxWorld(GetParam(), 0);
-  World at_once = boxWorld(GetParam(), 1000000);
+void expectSameStateAsAllAtOnce(const Integrator integrator, BoxScene scene) {
+  scene.max_contacts = 0;
+  World in_parts = boxWorld(integrator, scene);
+  scene.max_contacts = 1000000;
+  World at_once = boxWorld(integrator, scene);
   int steps_with_corners = 0;
   for (int s = 0; s < 180; ++s) {
     in_parts.step();
@@ -80,13 +101,21 @@ TEST_P(ColliderContactParts, SameStateAsAllAtOnce) {
     ASSERT_EQ(a.position_iterations, b.position_iterations) << "step " << s;
     ASSERT_EQ(a.max_penetration, b.max_penetration) << "step " << s;
     ASSERT_EQ(a.max_closing_velocity, b.max_closing_velocity) << "step " << s;
-    // More contacts than balls: some ball is in two (a corner, a wall and the floor).
+    // Rows took part: some ball is in two contacts (a corner, a wall and the floor).
     if (a.contacts > static_cast<std::size_t>(kBalls) / 2 && a.velocity_iterations > 1) {
       ++steps_with_corners;
     }
   }
   EXPECT_GT(steps_with_corners, 0);
   EXPECT_EQ(in_parts.divergenceCount(), 0u);
+}
+
+TEST_P(ColliderContactParts, SameStateAsAllAtOnce) { expectSameStateAsAllAtOnce(GetParam(), {}); }
+
+TEST_P(ColliderContactParts, FrictionlessPlanesSameStateAsAllAtOnce) {
+  BoxScene scene;
+  scene.planes_only = true;
+  expectSameStateAsAllAtOnce(GetParam(), scene);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, ColliderContactParts, everyIntegrator(),

@@ -8,6 +8,7 @@
 
 #include "mass_aggregate_sim/engine/collision_settings.h"
 #include "mass_aggregate_sim/engine/contact.h"
+#include "mass_aggregate_sim/engine/isolated_contact_batch.h"
 #include "mass_aggregate_sim/engine/state_hash.h"
 #include "mass_aggregate_sim/engine/types.h"
 
@@ -69,6 +70,17 @@ class ContactResolver {
   void addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
                IsolatedContacts isolated);
+  // A part of frictionless plane contacts made and solved in vector lanes without a Contact
+  // (solvePlaneGroups()): particles [begin, end) four at a time while they qualify; returns the
+  // first particle not handled, whose contacts the caller adds with addPart().
+  std::size_t addPlaneGroups(const BatchPlane* planes, std::size_t plane_count, std::size_t begin,
+                             std::size_t end, const std::uint32_t* slots,
+                             const ConstScalarMap& radius, Vec3Map x, Vec3Map v,
+                             const ConstScalarMap& inverse_mass,
+                             const Eigen::Ref<const Vec3Array>& acceleration, Real h, Real slop,
+                             Real margin);
+  // Contacts added since beginParts().
+  std::size_t partsContactCount() const { return parts_size_; }
   void finishParts(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                    const Eigen::Ref<const Vec3Array>& acceleration, Real h,
                    const CollisionSettings& settings, ContactStats& stats);
@@ -220,10 +232,12 @@ class ContactResolver {
   std::array<std::uint32_t, kBatchSize> batch_contact_{};
   std::array<Real, kBatchSize> batch_previous_{};
   std::size_t batch_count_ = 0;
-  std::size_t batch_base_ = 0;          // the batch's contacts are the substep's from this index on
-  std::size_t warm_cursor_ = 0;         // where the next contact's warm start is looked for first
-  std::size_t prepared_count_ = 0;      // contacts set up this substep (warm start entries)
-  std::size_t parts_size_ = 0;          // contacts added by addPart() this substep
+  std::size_t batch_base_ = 0;      // the batch's contacts are the substep's from this index on
+  std::size_t warm_cursor_ = 0;     // where the next contact's warm start is looked for first
+  std::size_t prepared_count_ = 0;  // contacts set up this substep (warm start entries)
+  std::size_t parts_size_ = 0;
+  bool parts_prepared_ = false;  // beginPrepare() ran for this substep's parts          // contacts
+                                 // added by addPart() this substep
   std::vector<LinkGeometry> no_links_;  // always empty
   std::vector<Contact> no_contacts_;    // always empty
   std::vector<Real> friction_coefficient_;

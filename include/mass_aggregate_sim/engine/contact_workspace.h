@@ -16,6 +16,7 @@ namespace engine {
 // Buffers the contact phase of World keeps between substeps (never part of the world's state).
 struct ContactWorkspace {
   std::vector<Contact> contacts;
+  std::vector<BatchPlane> batch_planes;  // the planes, for ContactResolver::addPlaneGroups()
   // This substep's generation gave some particle contacts with two or more colliders.
   bool particle_in_two_collider_contacts = false;
   std::vector<LinkGeometry> links;   // of the link contacts, by Contact::link

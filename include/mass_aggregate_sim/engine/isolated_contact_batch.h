@@ -41,5 +41,53 @@ struct IsolatedBatchOutputs {
 // particle i at 3i), warm starts, touched particles and stats in `out`.
 void solveIsolatedBatch(const IsolatedBatchInputs& in, Real* x, Real* v, IsolatedBatchOutputs& out);
 
+// A frictionless plane, n.x < offset solid, for solvePlaneGroups().
+struct BatchPlane {
+  Real normal[3];
+  Real offset;
+  Real restitution;
+  std::uint32_t id;  // its collider id
+};
+
+struct PlaneGroupInputs {
+  const BatchPlane* planes = nullptr;
+  std::size_t plane_count = 0;
+  std::size_t begin = 0;  // particles [begin, end), four at a time
+  std::size_t end = 0;
+  const std::uint32_t* slots = nullptr;  // per particle: its id's slot, for the contact keys
+  const Real* radius = nullptr;
+  const Real* inverse_mass = nullptr;
+  const Real* acceleration = nullptr;  // xyz of particle i at 3i
+  Real margin = 0.0;                   // contacts for gaps narrower than this
+  Real h = 0.0;
+  Real slop = 0.0;
+  Real follow_scale = 0.0;
+  Real inverse_follow_scale = 0.0;
+  // The last substep's warm starts, in its contact order.
+  const std::uint64_t* warm_key = nullptr;
+  const Real* warm_normal = nullptr;
+  std::size_t warm_size = 0;
+};
+
+struct PlaneGroupOutputs {
+  std::size_t cursor = 0;                  // in and out: where the next warm start is looked for
+  std::uint64_t* next_warm_key = nullptr;  // the contacts made, in order (room for end - begin)
+  Real* next_warm_normal = nullptr;
+  std::size_t contacts = 0;
+  std::uint32_t* touched = nullptr;  // the particles written (room for end - begin)
+  std::size_t touched_count = 0;
+  Real max_penetration = 0.0;  // running, as in IsolatedBatchOutputs
+  Real max_closing = 0.0;
+  bool corrected = false;
+  std::size_t stopped = 0;  // the first particle not handled
+};
+
+// Makes and solves the plane contacts of particles [begin, end), four consecutive particles at a
+// time, while each of the four meets at most one plane and finds its warm start at the cursor:
+// the contacts World::generateColliderContacts() would make, solved as solveIsolatedBatch() solves
+// them, without writing a Contact. Returns where it stopped (a group that does not qualify, or
+// fewer than four left); the caller makes those contacts the general way.
+std::size_t solvePlaneGroups(const PlaneGroupInputs& in, Real* x, Real* v, PlaneGroupOutputs& out);
+
 }  // namespace engine
 }  // namespace mass_aggregate_sim
