@@ -387,6 +387,7 @@ inline __attribute__((always_inline)) bool solvePlaneGroup(const PlaneGroupInput
     plane = (plane & ~touches) | ((Mask4{} + static_cast<std::int64_t>(p)) & touches);
   }
   if (anySet(more)) return false;
+  if (!anySet(one)) return true;  // all four in the air: nothing to write
   std::size_t cursor = out.cursor;
   Real previous[4] = {0.0, 0.0, 0.0, 0.0};
   std::uint64_t key[4] = {0, 0, 0, 0};
