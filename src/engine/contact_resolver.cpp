@@ -453,7 +453,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
   prepared_count_ = total_count;
   std::size_t cursor = warm_cursor_;
   std::size_t r = row_count_;
-  // Isolated ones waiting in the batch index this part's contacts; their warm starts go at base +.
+  // The batch holds indices into this call's contacts; their warm starts go at base + index.
   batch_base_ = base;
   for (std::size_t k = 0; k < count; ++k) {
     Contact& c = contacts[k];

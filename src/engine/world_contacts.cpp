@@ -73,6 +73,13 @@ void colliderContact(Contact* c, const std::uint32_t i, const std::uint32_t slot
   c->friction = material.friction;
 }
 
+// Swept results exist only when sweepParticles() ran this substep.
+bool sweptThisSubstep(const ContactWorkspace& ws, const CollisionSettings& settings,
+                      const std::size_t n) {
+  return settings.continuous && ws.time_of_impact.size() == n && ws.collider_hit.size() == n &&
+         ws.pair_is_swept.size() == ws.pairs.size();
+}
+
 // Gaps narrower than this get a contact too (speculative: it only stops them closing faster than
 // the gap within the substep), so a particle lifted off its support by a neighbour's correction
 // does not fall freely for a substep and land with a jolt.
@@ -463,9 +470,7 @@ bool World::generateColliderContacts(ContactWorkspace& ws, const std::size_t beg
   const auto inverse_mass = particles_.inverseMasses();
   const std::size_t n = particles_.size();
   const CollisionSettings& settings = collision_settings_;
-  // Swept results exist only when sweepParticles() ran this substep.
-  const bool swept = settings.continuous && ws.time_of_impact.size() == n &&
-                     ws.collider_hit.size() == n && ws.pair_is_swept.size() == ws.pairs.size();
+  const bool swept = sweptThisSubstep(ws, settings, n);
   const Real margin = contactMargin(settings);
   ContactSink sink(ws.contacts, settings.max_contacts, dropped);
   bool in_two = false;
@@ -520,9 +525,7 @@ void World::generateContacts(ContactWorkspace& ws, std::size_t& dropped) {
   const auto inverse_mass = particles_.inverseMasses();
   const std::size_t n = particles_.size();
   const CollisionSettings& settings = collision_settings_;
-  // Swept results exist only when sweepParticles() ran this substep.
-  const bool swept = settings.continuous && ws.time_of_impact.size() == n &&
-                     ws.collider_hit.size() == n && ws.pair_is_swept.size() == ws.pairs.size();
+  const bool swept = sweptThisSubstep(ws, settings, n);
   const Real margin = contactMargin(settings);
   ContactSink sink(ws.contacts, settings.max_contacts, dropped);
 
