@@ -111,10 +111,7 @@ std::size_t ContactResolver::addPlaneGroups(const BatchPlane* const planes,
                                             const Eigen::Ref<const Vec3Array>& acceleration,
                                             const Real h, const Real slop, const Real margin) {
   if (end < begin + 4 || acceleration.outerStride() != 3) return begin;
-  if (!parts_prepared_) {
-    beginPrepare(v, acceleration, false);
-    parts_prepared_ = true;
-  }
+  preparePartsOnce(v, acceleration);
   // Room for a contact per particle (never more: a particle meeting two planes stops the groups).
   const std::size_t room = parts_size_ + (end - begin);
   if (next_warm_key_.size() < room) {
@@ -167,10 +164,7 @@ void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
                               const ConstScalarMap& inverse_mass,
                               const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                               const Real slop, const IsolatedContacts isolated) {
-  if (!parts_prepared_) {
-    beginPrepare(v, acceleration, false);
-    parts_prepared_ = true;
-  }
+  preparePartsOnce(v, acceleration);
   if (isolated == IsolatedContacts::kFind) countParticleUses(part);
   prepare(part, parts_size_, x, v, inverse_mass, acceleration, h, slop, isolated);
   parts_size_ += part.size();
@@ -179,8 +173,15 @@ void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
 void ContactResolver::finishParts(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                                   const Eigen::Ref<const Vec3Array>& acceleration, const Real h,
                                   const CollisionSettings& settings, ContactStats& stats) {
-  if (!parts_prepared_) beginPrepare(v, acceleration, false);  // no contacts: empty phases
+  preparePartsOnce(v, acceleration);  // no part: empty phases
   finishSubstep(no_contacts_, x, v, inverse_mass, h, settings, stats);
+}
+
+void ContactResolver::preparePartsOnce(const Vec3Map& v,
+                                       const Eigen::Ref<const Vec3Array>& acceleration) {
+  if (parts_prepared_) return;
+  beginPrepare(v, acceleration, false);
+  parts_prepared_ = true;
 }
 
 void ContactResolver::beginSubstep(const Eigen::Index n, const Real h, const Real position_weight,

@@ -233,60 +233,43 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
     c[l] = lanes.contacts + contact[l];
     particle[l] = c[l]->a;
   }
-  const Real4 w = {lanes.inverse_mass[particle[0]], lanes.inverse_mass[particle[1]],
-                   lanes.inverse_mass[particle[2]], lanes.inverse_mass[particle[3]]};
-  const Real4 penetration = {c[0]->penetration, c[1]->penetration, c[2]->penetration,
-                             c[3]->penetration};
-  const Real4 restitution = {c[0]->restitution, c[1]->restitution, c[2]->restitution,
-                             c[3]->restitution};
-  const Real4 previous = simd::load(lanes.previous_impulse + e);
   const Real4 zero = broadcast(0.0);
-  const Mask4 movable = w > zero;
+  LaneContacts lane{};
+  lane.w = Real4{lanes.inverse_mass[particle[0]], lanes.inverse_mass[particle[1]],
+                 lanes.inverse_mass[particle[2]], lanes.inverse_mass[particle[3]]};
+  lane.penetration =
+      Real4{c[0]->penetration, c[1]->penetration, c[2]->penetration, c[3]->penetration};
+  lane.restitution =
+      Real4{c[0]->restitution, c[1]->restitution, c[2]->restitution, c[3]->restitution};
+  lane.previous = simd::load(lanes.previous_impulse + e);
   // w_sum <= 0: never active, never corrected.
-  const Mask4 live = ~(w <= zero);
-  const auto normal_component = [&](const int k) {
-    return Real4{c[0]->normal[k], c[1]->normal[k], c[2]->normal[k], c[3]->normal[k]};
-  };
-  const Real4 normal[3] = {normal_component(0), normal_component(1), normal_component(2)};
-  Real4 initial[3];
-  Real4 position[3];
-  Real4 acceleration[3];
+  lane.live = ~(lane.w <= zero);
+  for (int k = 0; k < 3; ++k) {
+    lane.normal[k] = Real4{c[0]->normal[k], c[1]->normal[k], c[2]->normal[k], c[3]->normal[k]};
+  }
   // Four particles one after the other (a row of balls on the ground): three loads and a transpose
   // per array instead of twelve single loads.
   const bool consecutive = particle[1] == particle[0] + 1 && particle[2] == particle[0] + 2 &&
                            particle[3] == particle[0] + 3 && lanes.acceleration_stride == 3;
   if (consecutive) {
     const std::size_t first = 3 * particle[0];
-    transposeIn(x + first, position);
-    transposeIn(v + first, initial);
-    transposeIn(lanes.acceleration + first, acceleration);
+    transposeIn(x + first, lane.position);
+    transposeIn(v + first, lane.velocity);
+    transposeIn(lanes.acceleration + first, lane.acceleration);
   } else {
     const std::ptrdiff_t stride = lanes.acceleration_stride;
     for (int k = 0; k < 3; ++k) {
-      initial[k] = Real4{v[3 * particle[0] + k], v[3 * particle[1] + k], v[3 * particle[2] + k],
-                         v[3 * particle[3] + k]};
-      position[k] = Real4{x[3 * particle[0] + k], x[3 * particle[1] + k], x[3 * particle[2] + k],
-                          x[3 * particle[3] + k]};
-      acceleration[k] =
+      lane.velocity[k] = Real4{v[3 * particle[0] + k], v[3 * particle[1] + k],
+                               v[3 * particle[2] + k], v[3 * particle[3] + k]};
+      lane.position[k] = Real4{x[3 * particle[0] + k], x[3 * particle[1] + k],
+                               x[3 * particle[2] + k], x[3 * particle[3] + k]};
+      lane.acceleration[k] =
           Real4{lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[0]) + k],
                 lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[1]) + k],
                 lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[2]) + k],
                 lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[3]) + k]};
     }
   }
-  for (int k = 0; k < 3; ++k) acceleration[k] = select(movable, acceleration[k], zero);
-  LaneContacts lane{w,
-                    penetration,
-                    restitution,
-                    previous,
-                    {normal[0], normal[1], normal[2]},
-                    {initial[0], initial[1], initial[2]},
-                    {position[0], position[1], position[2]},
-                    {acceleration[0], acceleration[1], acceleration[2]},
-                    live,
-                    zero,
-                    Mask4{},
-                    Mask4{}};
   solveLanes<kFollow>(lanes, lane, running);
   const Real4(&velocity)[3] = lane.velocity;
   const Real4(&solved)[3] = lane.position;
@@ -411,8 +394,6 @@ inline __attribute__((always_inline)) bool solvePlaneGroup(const PlaneGroupInput
                     Mask4{}};
   transposeIn(v + 3 * i, lane.velocity);
   transposeIn(in.acceleration + 3 * i, lane.acceleration);
-  const Mask4 movable = w > zero;
-  for (int k = 0; k < 3; ++k) lane.acceleration[k] = select(movable, lane.acceleration[k], zero);
   solveLanes<kFollow>(lanes, lane, running);
   transposeOut(lane.velocity, v + 3 * i);
   transposeOut(lane.position, x + 3 * i);

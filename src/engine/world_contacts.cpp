@@ -629,9 +629,8 @@ void World::resolveColliderContactsInParts(ContactWorkspace& ws, const Real h) {
   const CollisionSettings& settings = collision_settings_;
   // Frictionless planes only and no swept tests: groups of four particles that each meet at most
   // one plane go through solvePlaneGroups(), with no Contact written.
-  const bool swept = settings.continuous && static_cast<std::size_t>(ws.substep_start.cols()) == n;
-  bool plane_groups = !swept && colliders_.spheres.empty() && colliders_.boxes.empty() &&
-                      colliders_.capsules.empty();
+  bool plane_groups = !sweptThisSubstep(ws, settings, n) && colliders_.spheres.empty() &&
+                      colliders_.boxes.empty() && colliders_.capsules.empty();
   ws.batch_planes.clear();
   for (const PlaneCollider& c : colliders_.planes) {
     plane_groups = plane_groups && !(c.material.friction > 0.0);

@@ -174,6 +174,8 @@ class ContactResolver {
                     const std::vector<LinkGeometry>& links);
   // Before the first contact of the substep; dense: see rows_dense_.
   void beginPrepare(const Vec3Map& v, const Eigen::Ref<const Vec3Array>& acceleration, bool dense);
+  // beginPrepare() for the parts, at the first of them (few rows among them: not dense).
+  void preparePartsOnce(const Vec3Map& v, const Eigen::Ref<const Vec3Array>& acceleration);
   // Sets up contacts (the substep's from index `base` on): isolated ones are solved, the others
   // become rows.
   void prepare(std::vector<Contact>& contacts, std::size_t base, Vec3Map& x, Vec3Map& v,
