@@ -2,15 +2,18 @@
 // collisions) of issue 5, reported per particle-step like integration_bench.cpp: the counter
 // particle_step_time is the time of one step divided by the particle count. Both scenes start
 // packed at rest and settle for a bounded number of untimed steps, so the set-up stays short at
-// 100,000 particles; the counters kinetic_energy_per_particle and contacts show the timed state was
-// a settled one.
+// 100,000 particles; the counters kinetic_energy_per_particle, max_penetration and contacts show
+// the timed state was a settled one. D comes twice: frictionless with r = 0.1 m (issue 5's scene)
+// and with friction 0.3 and r = 2.5 cm (issue 13: the scene the frictionless fast paths do not
+// serve).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 #include "scenario_common.h"
 
 namespace mass_aggregate_sim {
@@ -18,6 +21,8 @@ namespace engine {
 namespace {
 
 using bench::kRadius;
+using bench::runContactSteps;
+using bench::settledScene;
 using bench::unitParticle;
 
 constexpr Real kRestitution = 0.2;
@@ -30,7 +35,7 @@ Material groundMaterial() { return Material{kRestitution, 0.0}; }
 // the ground plane y = 0. Only particle-ground contacts: particle collisions are off.
 World groundGridWorld(const std::int64_t n) {
   World world(bench::scenarioConfig());
-  world.addPlane(PlaneCollider{Vec3::UnitY(), 0.0, groundMaterial()});
+  world.addCollider(PlaneCollider{Vec3::UnitY(), 0.0, groundMaterial()});
   const auto side = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (std::int64_t i = 0; i < n; ++i) {
     world.addParticle(unitParticle(
@@ -52,69 +57,80 @@ std::int64_t pileSide(const std::int64_t n) {
   return side;
 }
 
+// The material of a D pile: the particles' radius, and restitution and friction of particle
+// pairs and of the five planes alike.
+struct PileMaterial {
+  Real radius = kRadius;
+  Real restitution = kRestitution;
+  Real friction = 0.0;
+};
+
 // D: a cubic lattice of touching spheres in a box of five half-spaces (floor and four walls) that
 // touch the outer spheres, particle collisions on. Packed at rest and jammed by the walls, so it
 // stays a pile (a cubic stack with room to move buckles) and the settling only absorbs the first
 // steps' sag under gravity.
-World pileWorld(const std::int64_t n, const Broadphase broadphase) {
+World pileWorld(const std::int64_t n, const Broadphase broadphase, const PileMaterial& material) {
   World world(bench::scenarioConfig());
   CollisionSettings settings;
   settings.particle_collisions = true;
   settings.broadphase = broadphase;
-  settings.particle_restitution = kRestitution;
+  settings.particle_restitution = material.restitution;
+  settings.particle_friction = material.friction;
   world.setCollisionSettings(settings);
-  const Real spacing = 2.0 * kRadius;
+  const Material walls{material.restitution, material.friction};
+  const Real spacing = 2.0 * material.radius;
   const std::int64_t side = pileSide(n);
   const Real half_width = 0.5 * spacing * static_cast<Real>(side);
-  world.addPlane(PlaneCollider{Vec3::UnitY(), 0.0, groundMaterial()});
-  world.addPlane(PlaneCollider{Vec3::UnitX(), -half_width, groundMaterial()});
-  world.addPlane(PlaneCollider{-Vec3::UnitX(), -half_width, groundMaterial()});
-  world.addPlane(PlaneCollider{Vec3::UnitZ(), -half_width, groundMaterial()});
-  world.addPlane(PlaneCollider{-Vec3::UnitZ(), -half_width, groundMaterial()});
+  world.addCollider(PlaneCollider{Vec3::UnitY(), 0.0, walls});
+  world.addCollider(PlaneCollider{Vec3::UnitX(), -half_width, walls});
+  world.addCollider(PlaneCollider{-Vec3::UnitX(), -half_width, walls});
+  world.addCollider(PlaneCollider{Vec3::UnitZ(), -half_width, walls});
+  world.addCollider(PlaneCollider{-Vec3::UnitZ(), -half_width, walls});
   const Real first = -0.5 * spacing * static_cast<Real>(side - 1);
   for (std::int64_t i = 0; i < n; ++i) {
     const std::int64_t layer = i / (side * side);
     const std::int64_t in_layer = i % (side * side);
-    world.addParticle(unitParticle(Vec3(first + spacing * static_cast<Real>(in_layer % side),
-                                        kRadius + spacing * static_cast<Real>(layer),
-                                        first + spacing * static_cast<Real>(in_layer / side))));
+    ParticleSpec spec = unitParticle(Vec3(first + spacing * static_cast<Real>(in_layer % side),
+                                          material.radius + spacing * static_cast<Real>(layer),
+                                          first + spacing * static_cast<Real>(in_layer / side)));
+    spec.radius = material.radius;
+    world.addParticle(spec);
   }
   return world;
 }
 
-void settle(World& world) {
+World settled(World world) {
   for (int s = 0; s < kSettleSteps; ++s) world.step();
+  return world;
 }
 
-void runContactSteps(benchmark::State& state, World& world) {
-  const std::uint64_t divergences_before = world.divergenceCount();
-  for (auto _ : state) {
-    world.step();
-    benchmark::DoNotOptimize(world.particles().positions().data());
-    benchmark::ClobberMemory();
-  }
-  const auto n = static_cast<double>(world.particles().size());
-  state.counters["particle_step_time"] = benchmark::Counter(
-      n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["particles"] = n;
-  state.counters["contacts"] = static_cast<double>(world.lastContactStats().contacts);
-  state.counters["kinetic_energy_per_particle"] = world.kineticEnergy() / n;
-  state.counters["velocity_passes"] = world.lastContactStats().velocity_iterations;
-  state.counters["position_passes"] = world.lastContactStats().position_iterations;
-  state.counters["divergences"] = static_cast<double>(world.divergenceCount() - divergences_before);
+std::string sceneName(const char* scene, const benchmark::State& state) {
+  return std::string(scene) + "/" + std::to_string(state.range(0)) + "/" +
+         std::to_string(state.range(1));
 }
 
 void BM_ScenarioC_GroundGrid(benchmark::State& state) {
-  World world = groundGridWorld(state.range(0));
-  settle(world);
+  World world = settledScene("C/" + std::to_string(state.range(0)),
+                             [&] { return settled(groundGridWorld(state.range(0))); });
   runContactSteps(state, world);
 }
 
 void BM_ScenarioD_SettledPile(benchmark::State& state) {
   const auto broadphase = static_cast<Broadphase>(state.range(1));
   state.SetLabel(broadphaseName(broadphase));
-  World world = pileWorld(state.range(0), broadphase);
-  settle(world);
+  World world = settledScene(sceneName("D", state), [&] {
+    return settled(pileWorld(state.range(0), broadphase, PileMaterial{}));
+  });
+  runContactSteps(state, world);
+}
+
+// D with particle, floor and wall friction 0.3, restitution 0.2 and particles of r = 2.5 cm.
+void BM_ScenarioD_FrictionPile(benchmark::State& state) {
+  const auto broadphase = static_cast<Broadphase>(state.range(1));
+  state.SetLabel(broadphaseName(broadphase));
+  World world = settledScene(sceneName("D friction", state), [&] {
+    return settled(pileWorld(state.range(0), broadphase, PileMaterial{0.025, kRestitution, 0.3}));
+  });
   runContactSteps(state, world);
 }
 
@@ -128,6 +144,7 @@ void pileArguments(benchmark::internal::Benchmark* bench) {
 
 BENCHMARK(BM_ScenarioC_GroundGrid)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_ScenarioD_SettledPile)->Apply(pileArguments)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ScenarioD_FrictionPile)->Apply(pileArguments)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace engine

@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
+#include "scenario_common.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -31,11 +33,11 @@ World settledPile(const int count, const Broadphase broadphase) {
   const Real spacing = 0.09;
   const Real half_width = 0.5 * side * spacing + 0.05;
   const Material material{0.2, 0.3};
-  world.addPlane(PlaneCollider{Vec3::UnitZ(), 0.0, material});
-  world.addPlane(PlaneCollider{Vec3::UnitX(), -half_width, material});
-  world.addPlane(PlaneCollider{-Vec3::UnitX(), -half_width, material});
-  world.addPlane(PlaneCollider{Vec3::UnitY(), -half_width, material});
-  world.addPlane(PlaneCollider{-Vec3::UnitY(), -half_width, material});
+  world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, material});
+  world.addCollider(PlaneCollider{Vec3::UnitX(), -half_width, material});
+  world.addCollider(PlaneCollider{-Vec3::UnitX(), -half_width, material});
+  world.addCollider(PlaneCollider{Vec3::UnitY(), -half_width, material});
+  world.addCollider(PlaneCollider{-Vec3::UnitY(), -half_width, material});
   std::mt19937 rng(11);
   std::uniform_real_distribution<Real> jitter(-0.005, 0.005);
   for (int n = 0; n < count; ++n) {
@@ -58,7 +60,10 @@ void BM_ContactsSettledPileStep(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   const Broadphase broadphase =
       state.range(1) == 0 ? Broadphase::kSortAndSweep : Broadphase::kUniformGrid;
-  World world = settledPile(count, broadphase);
+  // Settled once per run, not once per trial (scenario_common.h).
+  World world = bench::settledScene(
+      "settled pile/" + std::to_string(count) + "/" + std::to_string(state.range(1)),
+      [&] { return settledPile(count, broadphase); });
   for (auto _ : state) world.step();
   const ContactStats& stats = world.lastContactStats();
   state.SetLabel(broadphaseName(broadphase));

@@ -2,7 +2,7 @@
 set datafile separator ','
 set terminal pngcairo size 900,640 enhanced font 'DejaVu Sans,11'
 integrators = "explicit_euler semi_implicit_euler position_verlet velocity_verlet rk4 implicit_euler"
-problems = "undamped_oscillator damped_oscillator spring_chain drag_projectile"
+problems = "undamped_oscillator damped_oscillator spring_chain drag_projectile damped_projectile"
 wp = dir.'/work_precision.csv'
 set grid
 set key outside right top

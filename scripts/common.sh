@@ -18,6 +18,9 @@ APT_PACKAGES=(
   libvisualization-msgs-dev libstd-srvs-dev libros-rosgraph-msgs-dev librostest-dev python3-rostest
   python3-rosbag python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-rospy
   python3-tf2-ros
+  libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libeigen3-dev libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev
   ${MAS_EXTRA_APT_PACKAGES:-}
 )

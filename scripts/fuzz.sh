@@ -30,7 +30,8 @@ for target_src in "${REPO_DIR}"/test/fuzz/*_fuzz.cpp; do
   # The engine's own compile options (CMakeLists.txt) come first.
   clang++ -std=c++17 -O1 -g -ffp-contract=off -fno-math-errno -Wno-psabi \
     -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I"${REPO_DIR}/include" -I"${msg_include}" ${eigen_include} "${target_src}" "${REPO_DIR}"/src/engine/*.cpp \
+    -I"${REPO_DIR}/include" -I"${REPO_DIR}/src" -I"${msg_include}" ${eigen_include} "${target_src}" \
+    $(find "${REPO_DIR}/src/engine" -name '*.cpp' | sort) \
     "${extra_sources[@]}" "${extra_flags[@]}" -o "${binary}" >"${fuzz_dir}/${target}.build.log" 2>&1 || {
     tail -n 30 "${fuzz_dir}/${target}.build.log"
     echo "fuzz target ${target} failed to build" >&2

@@ -47,11 +47,14 @@ def main():
     sim = last.time - first.time
     cost = sum(s.step_cost_mean for s in window[1:]) / (len(window) - 1)
     publish = sum(s.publish_cost for s in window[1:]) / (len(window) - 1)
+    # The world thread's copy of each frame (nodes that publish from the stepping thread have none).
+    frame = sum(getattr(s, 'frame_cost', 0.0) for s in window[1:]) / (len(window) - 1)
     print('particles %d, window %.1f s wall: real-time factor %.3f (sim %.2f s), step cost mean '
-          '%.3f ms (max %.3f ms), publish cost mean %.3f ms, overruns %d, contacts %d, '
+          '%.3f ms (max %.3f ms), publish cost mean %.3f ms, frame copy mean %.3f ms, overruns %d, '
+          'contacts %d, '
           'iterations %d, markers %.1f Hz (%d points)'
           % (last.particles, wall, sim / wall, sim, 1e3 * cost,
-             1e3 * max(s.step_cost_max for s in window), 1e3 * publish,
+             1e3 * max(s.step_cost_max for s in window), 1e3 * publish, 1e3 * frame,
              last.overruns - first.overruns,
              last.contacts, last.resolver_iterations, markers['count'] / wall,
              markers['points']))

@@ -1,26 +1,33 @@
 #!/usr/bin/env python3
-"""Replays the commands recorded in a bag into a running mass_aggregate_sim node and checks that
-the final state hash equals the recorded one.
+"""Replays the commands recorded in a bag into a running mass_aggregate_sim node and checks, at
+every command, that the target's state hash equals the recorded one.
 
-The bag must hold the recording node's ~commands (from its first command on) and ~stats. The
-target node must have loaded the same scene with the same parameters (checked through the scene
-hash). The target is paused and reset, then every recorded command is re-issued at the step it
-was applied at: the script steps the target to that step first (~step), so wall-clock timing
-plays no part. Pause and step commands are not re-issued: the steps come from the stamps.
+The bag needs the recording node's ~commands only, from its first command on: each command
+carries the step it was applied at, the state hash and the configuration at that boundary, and the
+scene hash. The target is paused and reset, its configuration and scene are compared with the
+recording's (a difference is named, e.g. "integrator: target rk4, recorded semi_implicit_euler"),
+then every command is re-issued at its step: the script steps the paused target there with the
+~step action, so wall-clock timing plays no part. A recorded reconfigure is sent to the target's
+~set_parameters; pause and step commands are checkpoints (their steps come from the stamps). The
+first command whose state differs is named, with the configuration lines that differ.
 
 Usage: replay_commands.py BAG [--source /mass_aggregate_sim] [--target /mass_aggregate_sim]
-Exit status 0 when the hashes match, 1 when they differ or the replay fails.
+Exit status 0 when every hash matches, 1 when one differs or the replay fails.
 """
 import argparse
 import sys
+import threading
 
+import actionlib
 import rosbag
 import rospy
+from dynamic_reconfigure.msg import Config
+from dynamic_reconfigure.srv import Reconfigure
 from std_srvs.srv import SetBool, Trigger, TriggerRequest
 
-from mass_aggregate_sim.msg import SimStats
+from mass_aggregate_sim.msg import Command, StepAction, StepGoal
 from mass_aggregate_sim.srv import (AddLink, ApplyForce, ApplyImpulse, Remove, RemoveLink,
-                                    SetState, Spawn, Step)
+                                    SetState, Spawn)
 
 SERVICES = {
     'spawn': Spawn,
@@ -31,99 +38,183 @@ SERVICES = {
     'add_link': AddLink,
     'remove_link': RemoveLink,
 }
+CHECKPOINTS = ('pause', 'step')
+WAIT = 60.0  # s of wall time for any one answer
+
+
+class ReplayError(RuntimeError):
+    pass
 
 
 def read_bag(path, source):
-    commands, stats = [], []
+    commands = []
     with rosbag.Bag(path) as bag:
-        for topic, msg, _ in bag.read_messages(topics=[source + '/commands', source + '/stats']):
-            (commands if topic.endswith('/commands') else stats).append(msg)
-    return sorted(commands, key=lambda c: c.sequence), stats
+        for _, msg, _ in bag.read_messages(topics=[source + '/commands']):
+            commands.append(msg)
+    return sorted(commands, key=lambda c: c.sequence)
+
+
+def parse_configuration(text):
+    lines = {}
+    for line in text.splitlines():
+        key, _, value = line.partition(':')
+        if key:
+            lines[key.strip()] = value.strip()
+    return lines
+
+
+def configuration_difference(target, recorded):
+    """The lines that differ, as 'key: target X, recorded Y'; empty when equal."""
+    mine, theirs = parse_configuration(target), parse_configuration(recorded)
+    return ['%s: target %s, recorded %s' % (key, mine.get(key, '(none)'), theirs.get(key, '(none)'))
+            for key in sorted(set(mine) | set(theirs)) if mine.get(key) != theirs.get(key)]
+
+
+def describe(command):
+    return 'command %d (%s at step %d)' % (command.sequence, command.service, command.step)
 
 
 class Target:
+    """The node replayed into: its services, its ~step action, and its own ~commands, whose
+    records of the replayed requests carry the target's state hash at each boundary."""
+
     def __init__(self, ns):
         self.ns = ns
-        for name in list(SERVICES) + ['pause', 'step', 'reset']:
-            rospy.wait_for_service(ns + '/' + name, timeout=10.0)
+        for name in list(SERVICES) + ['pause', 'reset', 'set_parameters']:
+            rospy.wait_for_service(ns + '/' + name, timeout=WAIT)
         self.proxies = {name: rospy.ServiceProxy(ns + '/' + name, srv)
                         for name, srv in SERVICES.items()}
         self.pause = rospy.ServiceProxy(ns + '/pause', SetBool)
-        self.step_srv = rospy.ServiceProxy(ns + '/step', Step)
         self.reset_srv = rospy.ServiceProxy(ns + '/reset', Trigger)
+        self.reconfigure = rospy.ServiceProxy(ns + '/set_parameters', Reconfigure)
+        self.action = actionlib.SimpleActionClient(ns + '/step', StepAction)
+        if not self.action.wait_for_server(rospy.Duration(WAIT)):
+            raise ReplayError('the target has no %s/step action' % ns)
+        self.cond = threading.Condition()
+        self.echoes = []
+        self.subscriber = rospy.Subscriber(ns + '/commands', Command, self._on_command,
+                                           queue_size=1000)
+        deadline = rospy.get_time() + WAIT
+        while self.subscriber.get_num_connections() == 0:
+            if rospy.get_time() > deadline:
+                raise ReplayError('could not subscribe to %s/commands' % ns)
+            rospy.sleep(0.05)
         self.step = 0
-        self.hash = None
 
-    def stats(self):
-        return rospy.wait_for_message(self.ns + '/stats', SimStats, timeout=10.0)
+    def _on_command(self, msg):
+        with self.cond:
+            self.echoes.append(msg)
+            self.cond.notify_all()
+
+    def echo(self, service):
+        """The target's record of the request just made (the next one of that service)."""
+        with self.cond:
+            found = self.cond.wait_for(
+                lambda: any(e.service == service for e in self.echoes), WAIT)
+            if not found:
+                raise ReplayError('the target recorded no %s command' % service)
+            while True:
+                echo = self.echoes.pop(0)
+                if echo.service == service:
+                    return echo
+
+    def forget_echoes(self):
+        with self.cond:
+            del self.echoes[:]
+
+    def checkpoint(self):
+        """The target's record of a ~pause(true): its state hash and configuration now."""
+        self.forget_echoes()
+        if not self.pause(True).success:
+            raise ReplayError('the target refused to pause')
+        return self.echo('pause')
 
     def reset(self):
+        self.forget_echoes()
         answer = self.reset_srv(TriggerRequest())
         if not answer.success:
-            raise RuntimeError('reset refused: ' + answer.message)
+            raise ReplayError('reset refused: ' + answer.message)
         self.step = 0
-        self.hash = None
+        return self.echo('reset')
 
     def step_to(self, step):
         if step < self.step:
-            raise RuntimeError('command stamped step %d, but the target is at %d' % (step, self.step))
+            raise ReplayError('a command stamped step %d, but the target is at %d'
+                              % (step, self.step))
         if step == self.step:
             return
-        answer = self.step_srv(step - self.step)
-        if not answer.success:
-            raise RuntimeError('step refused: ' + answer.message)
-        self.step = answer.step
-        self.hash = answer.state_hash
+        self.action.send_goal(StepGoal(steps=step - self.step))
+        if not self.action.wait_for_result(rospy.Duration(3600.0)):
+            raise ReplayError('no result from the ~step action')
+        result = self.action.get_result()
+        if self.action.get_state() != actionlib.GoalStatus.SUCCEEDED:
+            raise ReplayError('step refused: ' + (result.message if result else 'no result'))
+        self.step = result.step
 
-    def call(self, service, raw):
-        srv = SERVICES[service]
+    def call(self, command):
+        self.forget_echoes()
+        if command.service == 'reconfigure':
+            config = Config()
+            config.deserialize(bytes(command.request))
+            self.reconfigure(config)
+            return self.echo('reconfigure')
+        srv = SERVICES[command.service]
         request = srv._request_class()
-        request.deserialize(bytes(raw))
-        answer = self.proxies[service](request)
+        request.deserialize(bytes(command.request))
+        answer = self.proxies[command.service](request)
         if not answer.success:
-            raise RuntimeError('%s refused on replay: %s' % (service, answer.message))
-        self.hash = None
+            raise ReplayError('%s refused on replay: %s' % (describe(command), answer.message))
+        return self.echo(command.service)
+
+
+def compare(echo, command):
+    """Raises, naming the command and the configuration lines that differ, when the target's state
+    before the command is not the recorded one."""
+    difference = configuration_difference(echo.configuration, command.configuration)
+    if echo.state_hash == command.state_hash and not difference:
+        return
+    text = 'the state differs before %s: target hash %d, recorded %d' % (
+        describe(command), echo.state_hash, command.state_hash)
+    if difference:
+        text += '; the configuration differs: ' + '; '.join(difference)
+    raise ReplayError(text)
 
 
 def replay(bag_path, source, target_ns):
-    commands, stats = read_bag(bag_path, source)
-    if not stats:
-        raise RuntimeError('the bag has no %s/stats message' % source)
-    final = stats[-1]
-    to_replay = [c for c in commands if c.sequence < final.commands_applied]
-    if final.commands_applied and (not to_replay or to_replay[0].sequence != 0):
-        raise RuntimeError('the bag starts after the node\'s first command: record from the start')
-    for expected, command in enumerate(to_replay):
+    commands = read_bag(bag_path, source)
+    if not commands:
+        raise ReplayError('the bag has no %s/commands message' % source)
+    if commands[0].sequence != 0:
+        raise ReplayError('the bag starts at command %d, after the node\'s first command: record '
+                          'from the start' % commands[0].sequence)
+    for expected, command in enumerate(commands):
         if command.sequence != expected:
-            raise RuntimeError('command %d is missing from the bag' % expected)
-    if len(to_replay) != final.commands_applied:
-        raise RuntimeError('the bag holds %d of the %d commands' % (len(to_replay),
-                                                                   final.commands_applied))
+            raise ReplayError('command %d is missing from the bag' % expected)
 
     target = Target(target_ns)
     if not target.pause(True).success:
-        raise RuntimeError('the target refused to pause')
-    target.reset()
-    scene_hash = target.stats().scene_hash
-    if scene_hash != final.scene_hash:
-        raise RuntimeError('the target loaded another scene (hash %d, recorded %d)'
-                           % (scene_hash, final.scene_hash))
-    for command in to_replay:
-        if command.service in ('pause', 'step'):
-            continue
+        raise ReplayError('the target refused to pause')
+    start = target.reset()
+    first = commands[0]
+    difference = configuration_difference(start.configuration, first.configuration)
+    if difference:
+        raise ReplayError('the target is configured differently: ' + '; '.join(difference))
+    if start.scene_hash != first.scene_hash:
+        raise ReplayError('the target loaded another scene: scene hash %d, recorded %d (same '
+                          'configuration, so the particles, colliders or links differ)'
+                          % (start.scene_hash, first.scene_hash))
+    last_hash = None
+    for command in commands:
         target.step_to(command.step)
-        if command.service == 'reset':
-            target.reset()
+        if command.service in CHECKPOINTS:
+            echo = target.checkpoint()
+        elif command.service == 'reset':
+            echo = target.reset()
         else:
-            target.call(command.service, command.request)
-    target.step_to(final.step)
-    if target.hash is None:
-        while True:
-            stats = target.stats()
-            if stats.paused and stats.step == final.step:
-                target.hash = stats.state_hash
-                break
-    return len(to_replay), final, target.hash
+            echo = target.call(command)
+        compare(echo, command)
+        last_hash = echo.state_hash
+    return len(commands), commands[-1], last_hash
 
 
 def main():
@@ -136,14 +227,14 @@ def main():
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node('replay_commands', anonymous=True)
     try:
-        count, final, replayed = replay(args.bag, args.source.rstrip('/'), args.target.rstrip('/'))
-    except (RuntimeError, rospy.ROSException, rospy.ServiceException) as error:
+        count, last, replayed = replay(args.bag, args.source.rstrip('/'),
+                                       args.target.rstrip('/'))
+    except (ReplayError, rospy.ROSException, rospy.ServiceException) as error:
         print('replay failed: %s' % error)
         return 1
-    match = replayed == final.state_hash
-    print('replayed %d commands to step %d: state hash %d, recorded %d: %s'
-          % (count, final.step, replayed, final.state_hash, 'match' if match else 'MISMATCH'))
-    return 0 if match else 1
+    print('replayed %d commands to step %d: state hash %d, recorded %d: match'
+          % (count, last.step, replayed, last.state_hash))
+    return 0
 
 
 if __name__ == '__main__':

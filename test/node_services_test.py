@@ -140,7 +140,7 @@ class NodeServicesTest(unittest.TestCase):
         self.assertAlmostEqual(p.velocity.x, 0.0, places=12)
 
     def test_pause_step_reset_give_exact_times_and_states(self):
-        scene_hash = self.sim.stats().scene_hash
+        start_hash = self.sim.stats().state_hash
         first = self.sim.step(7)
         self.assertTrue(first.success, first.message)
         self.assertEqual((first.step, first.time), (7, 7 * DT))
@@ -154,7 +154,7 @@ class NodeServicesTest(unittest.TestCase):
 
         self.assertTrue(self.sim.reset().success)
         stats = self.sim.stats()
-        self.assertEqual((stats.step, stats.time, stats.state_hash), (0, 0.0, scene_hash))
+        self.assertEqual((stats.step, stats.time, stats.state_hash), (0, 0.0, start_hash))
         again = self.sim.step(12)
         self.assertEqual(again.state_hash, second.state_hash)
 
@@ -178,6 +178,29 @@ class NodeServicesTest(unittest.TestCase):
         self.assertEqual(clocks, sorted(clocks))
         # After the reset the clock continues from where it was: +10 steps past the +30.
         self.assertGreaterEqual(clocks[-1] - clocks[0], 40 * DT - 1e-9)
+
+    def test_stamps_are_ros_time_and_the_body_has_simulated_time(self):
+        """Not on /use_sim_time here: stamps are wall time (tf consumers on wall time see
+        current stamps), the simulated time is in the message body."""
+        self.assertTrue(self.sim.step(50).success)
+        stats = self.sim.stats()
+        particles = self.sim.fresh('particles')
+        now = time.time()
+        for msg in (stats, particles):
+            self.assertLess(abs(msg.header.stamp.to_sec() - now), 30.0)
+            self.assertEqual(msg.step, 50)
+            self.assertAlmostEqual(msg.time, 50 * DT)
+
+    def test_a_refusal_quotes_at_most_100_characters(self):
+        huge = 'x' * 100000
+        for what, answer in [
+                ('remove', self.sim.remove([], [huge])),
+                ('link type', self.sim.add_link(AddLinkRequest(type=huge, a_name='shot',
+                                                               to_anchor=True))),
+                ('frame', self.sim.apply_impulse(0, 'shot', huge, vec(1.0, 0.0, 0.0))),
+                ('set_state', self.sim.set_state(SetStateRequest(name=huge, set_velocity=True)))]:
+            self.assertFalse(answer.success, what)
+            self.assertLess(len(answer.message), 400, what + ': ' + answer.message[:400])
 
     def test_markers_show_particles_and_start_over_after_reset(self):
         arrays = []

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""Records a driven node with rosbag, replays the bag into a second node with
-scripts/replay_commands.py, and expects the same final state hash (rostest: test/replay.test)."""
+"""Records a driven node's ~commands (and nothing else) with rosbag, replays the bag into a second
+node with scripts/replay_commands.py, and expects the same final state hash; a third node with
+another integrator must be named as different (rostest: test/replay.test). The drive includes live
+reconfigures of the integrator and gravity and a ~step action that is cancelled."""
 import os
 import re
 import signal
@@ -10,11 +12,14 @@ import tempfile
 import time
 import unittest
 
+import actionlib
 import rospkg
 import rospy
 import rostest
+from dynamic_reconfigure.client import Client
 from geometry_msgs.msg import Vector3
 
+from mass_aggregate_sim.msg import StepAction, StepGoal
 from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
 from sim_client import SimClient, spec
 
@@ -31,6 +36,10 @@ class ReplayTest(unittest.TestCase):
         rospy.init_node('replay_test')
         cls.sim = SimClient('/mass_aggregate_sim')
         SimClient('/replay_target')  # waits for its services
+        SimClient('/differing_target')
+        cls.action = actionlib.SimpleActionClient('/mass_aggregate_sim/step', StepAction)
+        assert cls.action.wait_for_server(rospy.Duration(30.0))
+        cls.reconfigure = Client('/mass_aggregate_sim', timeout=30.0)
         cls.dir = tempfile.mkdtemp(prefix='mas_replay_')
         cls.script = os.path.join(rospkg.RosPack().get_path('mass_aggregate_sim'), 'scripts',
                                   'replay_commands.py')
@@ -38,7 +47,7 @@ class ReplayTest(unittest.TestCase):
     def record(self, bag):
         recorder = subprocess.Popen(
             ['rosbag', 'record', '-O', bag, '/mass_aggregate_sim/commands',
-             '/mass_aggregate_sim/stats', '__name:=replay_test_record'],
+             '__name:=replay_test_record'],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         # Wait until the recorder has subscribed to the commands topic.
         deadline = time.time() + 20.0
@@ -81,6 +90,28 @@ class ReplayTest(unittest.TestCase):
         self.assertTrue(sim.set_state(SetStateRequest(name='ball', set_velocity=True,
                                                       velocity=vec(0.0, 0.0, 3.0))).success)
         self.assertTrue(sim.step(5).success)
+        # Live settings, recorded on ~commands and replayed through ~set_parameters.
+        config = self.reconfigure.update_configuration({'integrator': 'rk4', 'gravity_z': -4.5})
+        self.assertEqual(config['integrator'], 'rk4')
+        self.assertTrue(sim.step(9).success)
+        # A long ~step action, cancelled once it has reported progress: it stops at a step
+        # boundary, and the steps it took are recorded.
+        feedback = []
+        self.action.send_goal(StepGoal(steps=5000000), feedback_cb=feedback.append)
+        deadline = time.time() + 30.0
+        while not feedback and time.time() < deadline:
+            time.sleep(0.02)
+        self.assertTrue(feedback, 'no feedback from the ~step action')
+        self.assertTrue(sim.apply_impulse(0, 'spring_5', '', vec(0.5, 0.0, 0.0)).success)
+        self.action.cancel_goal()
+        self.assertTrue(self.action.wait_for_result(rospy.Duration(30.0)))
+        self.assertEqual(self.action.get_state(), actionlib.GoalStatus.PREEMPTED)
+        result = self.action.get_result()
+        self.assertGreater(result.steps_done, 0)
+        self.assertLess(result.steps_done, 5000000)
+        config = self.reconfigure.update_configuration({'integrator': 'semi_implicit_euler',
+                                                        'substeps': 2})
+        self.assertEqual(config['substeps'], 2)
         self.assertTrue(sim.remove([], ['bungee_9']).success)
         self.assertTrue(sim.pause(False).success)
         time.sleep(0.3)
@@ -94,10 +125,10 @@ class ReplayTest(unittest.TestCase):
         sim.stats()
         return final
 
-    def replay(self, bag):
+    def replay(self, bag, target='/replay_target'):
         env = dict(os.environ)
         env['PATH'] = '/usr/bin:' + env.get('PATH', '')
-        return subprocess.run(['/usr/bin/python3', self.script, bag, '--target', '/replay_target'],
+        return subprocess.run(['/usr/bin/python3', self.script, bag, '--target', target],
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               timeout=90, env=env)
 
@@ -117,6 +148,10 @@ class ReplayTest(unittest.TestCase):
         self.assertEqual(int(found.group(2)), final.state_hash)
         self.assertEqual(int(found.group(3)), final.state_hash)
         self.assertGreater(final.step, 0)
+        # A node started with another integrator: the replay names the difference.
+        result = self.replay(bag, '/differing_target')
+        self.assertNotEqual(result.returncode, 0, result.stdout)
+        self.assertIn('integrator: target rk4, recorded velocity_verlet', result.stdout)
 
 
 if __name__ == '__main__':

@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/stability.h"
+#include "mass_aggregate_sim/engine/world/stability.h"
 #include "reference_problems.h"
 
 namespace mass_aggregate_sim {
 namespace study {
 namespace {
 
-using engine::AnchoredSpring;
 using engine::integratorName;
 using engine::ParticleSpec;
+using engine::Spring;
 using engine::WorldConfig;
 
 const Integrator kIntegrators[] = {Integrator::kExplicitEuler,
@@ -72,7 +72,7 @@ struct Sample {
 // time per simulated second (runs repeated until 20 ms of CPU time are measured).
 std::vector<Sample> workPrecision(const std::string& dir) {
   const ReferenceProblem problems[] = {undampedOscillator(), dampedOscillator(), springChain(),
-                                       dragProjectile()};
+                                       dragProjectile(), dampedProjectile()};
   FILE* csv = openCsv(dir, "work_precision.csv",
                       "problem,integrator,dt,error,cpu_s_per_simulated_s,diverged");
   std::vector<Sample> samples;
@@ -118,10 +118,10 @@ bool staysBounded(const Integrator integrator, const Real omega_h, const long st
   ParticleSpec spec;
   spec.position = Vec3::UnitX();
   world.addParticle(spec);
-  AnchoredSpring spring;
-  spring.particle = world.particles().idAt(0);
+  Spring spring;
+  spring.a = world.particles().idAt(0);
   spring.stiffness = std::pow(omega_h / dt, 2);
-  world.addAnchoredSpring(spring);
+  world.addGenerator(spring);
   for (long s = 0; s < steps; ++s) {
     world.step();
     const Real x = std::abs(world.particles().positions()(0, 0));

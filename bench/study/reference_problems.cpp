@@ -6,7 +6,6 @@ namespace mass_aggregate_sim {
 namespace study {
 namespace {
 
-using engine::AnchoredSpring;
 using engine::Drag;
 using engine::ParticleId;
 using engine::ParticleSpec;
@@ -31,11 +30,11 @@ World oscillator(const Integrator integrator, const Real dt, const Real damping)
   ParticleSpec spec;
   spec.position = Vec3::UnitX();
   const ParticleId id = world.addParticle(spec).value();
-  AnchoredSpring spring;
-  spring.particle = id;
+  Spring spring;
+  spring.a = id;
   spring.stiffness = 1.0;
   spring.damping = damping;
-  world.addAnchoredSpring(spring);
+  world.addGenerator(spring);
   return world;
 }
 
@@ -88,18 +87,18 @@ ReferenceProblem springChain() {
       spec.position = Vec3(i + 1.0, 0.0, 0.0);
       const ParticleId id = world.addParticle(spec).value();
       if (i == 0) {
-        AnchoredSpring anchor;
-        anchor.particle = id;
+        Spring anchor;
+        anchor.a = id;
         anchor.stiffness = 100.0;
         anchor.rest_length = 1.0;
-        world.addAnchoredSpring(anchor);
+        world.addGenerator(anchor);
       } else {
         Spring spring;
         spring.a = previous;
         spring.b = id;
         spring.stiffness = 100.0;
         spring.rest_length = 1.0;
-        world.addSpring(spring);
+        world.addGenerator(spring);
       }
       previous = id;
     }
@@ -121,8 +120,38 @@ ReferenceProblem dragProjectile() {
     Drag drag;
     drag.particle = id;
     drag.k2 = 0.05;
-    world.addDrag(drag);
+    world.addGenerator(drag);
     return world;
+  };
+  return p;
+}
+
+ReferenceProblem dampedProjectile() {
+  constexpr Real kDamping = 0.5;
+  const Vec3 x0(0.0, 1.5, 0.0);
+  const Vec3 v0(40.0, 30.0, 0.0);
+  const Vec3 g(0.0, -20.0, 0.0);
+  ReferenceProblem p;
+  p.name = "damped_projectile";
+  p.description = "the seeds' projectile with particle damping 0.5, 4 s, exact solution";
+  p.duration = 4.0;
+  p.build = [=](const Integrator integrator, const Real dt) {
+    World world = emptyWorld(integrator, dt, g);
+    ParticleSpec spec;
+    spec.position = x0;
+    spec.velocity = v0;
+    spec.inverse_mass = 1.0 / 200.0;
+    spec.damping = kDamping;
+    world.addParticle(spec);
+    return world;
+  };
+  p.exact = [=] {
+    const Real lambda = std::log(kDamping);
+    const Real t = 4.0;
+    const Real phi = std::expm1(lambda * t) / lambda;
+    Vec3Array x(3, 1);
+    x.col(0) = x0 + phi * v0 + (phi - t) / lambda * g;
+    return x;
   };
   return p;
 }

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
 namespace study {
@@ -36,6 +36,11 @@ ReferenceProblem dampedOscillator();
 ReferenceProblem springChain();
 // A unit mass thrown at (30, 30, 0) m/s under gravity with quadratic drag k2 = 0.05.
 ReferenceProblem dragProjectile();
+// The seeds' projectile with particle damping: 200 kg thrown at (40, 30, 0) m/s from 1.5 m,
+// g = 20 m/s^2, damping d = 0.5 (half the velocity kept per second, so the damping shows at
+// every dt), 4 s. v' = ln(d) v + g has the closed form
+// x(t) = x0 + phi(t) v0 + (phi(t) - t) / ln(d) g, phi(t) = (d^t - 1) / ln(d).
+ReferenceProblem dampedProjectile();
 
 // Runs the scene to the problem's duration; returns the final positions.
 Vec3Array finalPositions(const ReferenceProblem& problem, Integrator integrator, Real dt);

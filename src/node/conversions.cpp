@@ -25,23 +25,19 @@ geometry_msgs::Vector3 toVector3Msg(const engine::Vec3& v) {
 engine::Vec3 fromMsg(const geometry_msgs::Point& p) { return engine::Vec3(p.x, p.y, p.z); }
 engine::Vec3 fromMsg(const geometry_msgs::Vector3& v) { return engine::Vec3(v.x, v.y, v.z); }
 
-void fillParticleArray(const engine::World& world, ParticleArray& msg) {
-  const engine::ParticleStore& particles = world.particles();
-  const auto x = particles.positions();
-  const auto v = particles.velocities();
-  const auto inverse_mass = particles.inverseMasses();
-  const auto radius = particles.radii();
-  msg.step = world.stepCount();
-  msg.time = world.time();
-  msg.particles.resize(particles.size());
-  for (std::size_t i = 0; i < particles.size(); ++i) {
+void fillParticleArray(const WorldSnapshot& world, ParticleArray& msg) {
+  const std::size_t n = world.ids.size();
+  msg.step = world.step;
+  msg.time = world.time;
+  msg.particles.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
     Particle& p = msg.particles[i];
-    p.id = particles.idAt(i).packed();
-    p.name = particles.name(i);
-    p.position = toPointMsg(x.col(i));
-    p.velocity = toVector3Msg(v.col(i));
-    p.mass = inverse_mass[i] > 0.0 ? 1.0 / inverse_mass[i] : 0.0;
-    p.radius = radius[i];
+    p.id = world.ids[i];
+    p.name = world.names[i];
+    p.position = toPointMsg(world.positions.col(i));
+    p.velocity = toVector3Msg(world.velocities.col(i));
+    p.mass = world.inverse_masses[i] > 0.0 ? 1.0 / world.inverse_masses[i] : 0.0;
+    p.radius = world.radii[i];
   }
 }
 

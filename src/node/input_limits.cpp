@@ -48,6 +48,11 @@ Status checkNonNegative(const Real value, const Real limit, const std::string& f
   return Status::ok();
 }
 
+std::string quoteInput(const std::string& text) {
+  if (text.size() <= kMaxQuoted) return "'" + text + "'";
+  return "'" + text.substr(0, kMaxQuoted) + "'... (" + std::to_string(text.size()) + " characters)";
+}
+
 Status checkParticleName(const std::string& name, const std::string& world_frame) {
   if (name.size() > kMaxNameLength) {
     return Status::error("name: at most " + std::to_string(kMaxNameLength) + " characters, got " +
@@ -61,7 +66,7 @@ Status checkParticleName(const std::string& name, const std::string& world_frame
   if (!name.empty() && name[0] == '/') return Status::error("name: must not start with '/'");
   if (!world_frame.empty() &&
       (name == world_frame || name.rfind(world_frame + "/collider_", 0) == 0)) {
-    return Status::error("name: '" + name + "' is the world frame or a collider frame");
+    return Status::error("name: " + quoteInput(name) + " is the world frame or a collider frame");
   }
   return Status::ok();
 }

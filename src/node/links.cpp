@@ -38,19 +38,21 @@ Result<GeneratorId> addAnchoredLink(engine::World& world, const ParticleId a,
   const Real distance = (positionOf(world, a) - r.anchor).norm();
   switch (r.type) {
     case LinkType::kSpring:
-      return world.addAnchoredSpring(engine::AnchoredSpring{
-          a, r.anchor, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+      return world.addGenerator(engine::Spring::anchoredAt(
+          a, r.anchor, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping));
     case LinkType::kBungee:
-      return world.addAnchoredBungee(engine::AnchoredBungee{
-          a, r.anchor, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+      return world.addGenerator(
+          engine::Spring::anchoredAt(a, r.anchor, r.stiffness,
+                                     lengthOrDistance(r.rest_length, distance), r.damping)
+              .pullingOnly());
     case LinkType::kStiffSpring:
-      return world.addStiffSpring(engine::StiffSpring{a, r.anchor, r.stiffness, r.damping});
+      return world.addGenerator(engine::StiffSpring{a, r.anchor, r.stiffness, r.damping});
     case LinkType::kCable:
-      return world.addAnchoredCable(engine::AnchoredCable{
-          a, r.anchor, lengthOrDistance(r.max_length, distance), r.restitution});
+      return world.addLink(engine::Cable::anchoredAt(
+          a, r.anchor, lengthOrDistance(r.max_length, distance), r.restitution));
     case LinkType::kRod:
-      return world.addAnchoredRod(
-          engine::AnchoredRod{a, r.anchor, lengthOrDistance(r.length, distance)});
+      return world.addLink(
+          engine::Rod::anchoredAt(a, r.anchor, lengthOrDistance(r.length, distance)));
   }
   return Status::error("unknown link type");
 }
@@ -60,18 +62,20 @@ Result<GeneratorId> addParticleLink(engine::World& world, const ParticleId a, co
   const Real distance = (positionOf(world, a) - positionOf(world, b)).norm();
   switch (r.type) {
     case LinkType::kSpring:
-      return world.addSpring(
-          engine::Spring{a, b, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+      return world.addGenerator(engine::Spring::between(
+          a, b, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping));
     case LinkType::kBungee:
-      return world.addBungee(
-          engine::Bungee{a, b, r.stiffness, lengthOrDistance(r.rest_length, distance), r.damping});
+      return world.addGenerator(engine::Spring::between(a, b, r.stiffness,
+                                                        lengthOrDistance(r.rest_length, distance),
+                                                        r.damping)
+                                    .pullingOnly());
     case LinkType::kStiffSpring:
       return Status::error("a stiff_spring links a particle to an anchor, not to particle b");
     case LinkType::kCable:
-      return world.addCable(
-          engine::Cable{a, b, lengthOrDistance(r.max_length, distance), r.restitution});
+      return world.addLink(
+          engine::Cable::between(a, b, lengthOrDistance(r.max_length, distance), r.restitution));
     case LinkType::kRod:
-      return world.addRod(engine::Rod{a, b, lengthOrDistance(r.length, distance)});
+      return world.addLink(engine::Rod::between(a, b, lengthOrDistance(r.length, distance)));
   }
   return Status::error("unknown link type");
 }
@@ -81,7 +85,7 @@ Result<GeneratorId> addParticleLink(engine::World& world, const ParticleId a, co
 Result<ParticleId> resolveParticle(const engine::World& world, const ParticleRef& ref) {
   if (!ref.name.empty()) {
     const auto id = world.particles().findByName(ref.name);
-    if (!id) return Status::error("no particle named '" + ref.name + "'");
+    if (!id) return Status::error("no particle named " + quoteInput(ref.name));
     return *id;
   }
   const ParticleId id = ParticleId::fromPacked(ref.id);
@@ -156,10 +160,8 @@ Result<GeneratorId> addLink(engine::World& world, const LinkRequest& request) {
 bool isLink(const engine::World& world, const GeneratorId id) {
   const engine::ForceGenerators& g = world.generators();
   const engine::Links& l = world.links();
-  return containsId(g.springs, id) || containsId(g.anchored_springs, id) ||
-         containsId(g.bungees, id) || containsId(g.anchored_bungees, id) ||
-         containsId(g.stiff_springs, id) || containsId(l.cables, id) || containsId(l.rods, id) ||
-         containsId(l.anchored_cables, id) || containsId(l.anchored_rods, id);
+  return containsId(g.of<engine::Spring>(), id) || containsId(g.of<engine::StiffSpring>(), id) ||
+         containsId(l.of<engine::Cable>(), id) || containsId(l.of<engine::Rod>(), id);
 }
 
 }  // namespace node

@@ -26,6 +26,7 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
            {"tension_scale", ParamType::kNumber},
            {"max_particles", ParamType::kInt},
            {"max_steps_per_request", ParamType::kInt},
+           {"max_service_steps", ParamType::kInt},
            {"max_links", ParamType::kInt},
            {"max_sustained_forces", ParamType::kInt},
            {"rate", ParamType::kNumber},
@@ -49,6 +50,8 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   nh.param("max_particles", max_particles, max_particles);
   int max_steps = static_cast<int>(p.limits.max_steps_per_request);
   nh.param("max_steps_per_request", max_steps, max_steps);
+  int max_service_steps = static_cast<int>(p.max_service_steps);
+  nh.param("max_service_steps", max_service_steps, max_service_steps);
   int max_links = static_cast<int>(p.limits.max_links);
   nh.param("max_links", max_links, max_links);
   int max_sustained = static_cast<int>(p.limits.max_sustained_forces);
@@ -75,6 +78,13 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
                            "], got " + std::to_string(value));
     }
   }
+  if (!nh.hasParam("max_service_steps")) max_service_steps = std::min(max_service_steps, max_steps);
+  if (max_service_steps < 1 || max_service_steps > max_steps) {
+    return Status::error("~max_service_steps: must be in [1, ~max_steps_per_request (" +
+                         std::to_string(max_steps) + ")], got " +
+                         std::to_string(max_service_steps));
+  }
+  p.max_service_steps = static_cast<std::uint32_t>(max_service_steps);
   p.limits.max_particles = static_cast<std::size_t>(max_particles);
   p.limits.max_steps_per_request = static_cast<std::uint32_t>(max_steps);
   p.limits.max_links = static_cast<std::size_t>(max_links);
@@ -105,8 +115,16 @@ Result<LoadedScene> readScene(ros::NodeHandle& nh, const NodeParams& params) {
     overrides.gravity = Vec3(gravity[0], gravity[1], gravity[2]);
   }
   XmlRpc::XmlRpcValue scene;
-  nh.getParam("scene", scene);
-  return loadScene(scene, overrides);
+  const bool given = nh.getParam("scene", scene);
+  const auto loaded = loadScene(scene, overrides);
+  if (!loaded) return loaded;
+  // A scene an earlier launch left on the parameter server is loaded as well (sim.launch clears
+  // the node's parameters first, a bare rosrun does not): the log line says where it came from.
+  LoadedScene out = *loaded;
+  out.source = given ? "the parameter " + nh.resolveName("scene") +
+                           " (as the parameter server held it at start)"
+                     : "nowhere (no parameter " + nh.resolveName("scene") + "): an empty scene";
+  return out;
 }
 
 }  // namespace node

@@ -15,6 +15,15 @@ bool RequestQueue::run(std::function<void()> job) {
   return done.get();
 }
 
+bool RequestQueue::post(std::function<void()> job) {
+  auto queued = std::make_shared<Job>();
+  queued->apply = std::move(job);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (stopped_) return false;
+  jobs_.push_back(queued);
+  return true;
+}
+
 void RequestQueue::drain() {
   std::deque<std::shared_ptr<Job>> jobs;
   {

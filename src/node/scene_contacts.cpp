@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
@@ -30,8 +31,8 @@ void readCollisionSettings(XmlRpcValue& s, const std::string& k, engine::World& 
     const std::string name = readString(s["broadphase"], k + ".broadphase");
     const auto parsed = engine::parseBroadphase(name);
     if (!parsed) {
-      throw ParamError(k + ".broadphase", "unknown broadphase '" + name +
-                                              "' (known: " + engine::broadphaseNames() + ")");
+      throw ParamError(k + ".broadphase", "unknown broadphase " + quoteInput(name) +
+                                              " (known: " + engine::broadphaseNames() + ")");
     }
     c.broadphase = *parsed;
   }
@@ -50,71 +51,101 @@ void readCollisionSettings(XmlRpcValue& s, const std::string& k, engine::World& 
   if (!valid) throw ParamError(k, valid.message());
 }
 
+namespace {
+
+using engine::Real;
+using engine::Vec3;
+
+// The names of a collider kind's fields (ShapeKind::fields), for the key check.
+class FieldNames {
+ public:
+  std::vector<std::string> names{"type", "restitution", "friction"};
+  void point(const char* name, const Vec3&) { names.emplace_back(name); }
+  void direction(const char* name, const Vec3&) { names.emplace_back(name); }
+  void coordinate(const char* name, const Real&) { names.emplace_back(name); }
+  void length(const char* name, const Real&) { names.emplace_back(name); }
+  void extents(const char* name, const Vec3&) { names.emplace_back(name); }
+  void orientation(const char* name, const Eigen::Quaterniond&) { names.emplace_back(name); }
+};
+
+// Reads a collider kind's fields from its scene entry by what they mean, each within the node's
+// bounds (kept in `bounds`, reported after the engine's own checks, which name the rule first).
+class FieldReader {
+ public:
+  FieldReader(XmlRpcValue& entry, const std::string& key) : entry_(entry), key_(key) {}
+  engine::Status bounds = engine::Status::ok();
+
+  void point(const char* name, Vec3& value) {
+    value = vec3Or(entry_, key_, name, value);
+    keep(checkPosition(value, name));
+  }
+  void direction(const char* name, Vec3& value) { value = vec3Or(entry_, key_, name, value); }
+  void coordinate(const char* name, Real& value) {
+    value = realOr(entry_, key_, name, value);
+    keep(checkNonNegative(std::abs(value), kMaxCoordinate, name, "m (absolute)"));
+  }
+  void length(const char* name, Real& value) {
+    value = realOr(entry_, key_, name, value);
+    keep(checkNonNegative(value, kMaxLength, name, "m"));
+  }
+  void extents(const char* name, Vec3& value) {
+    value = vec3Or(entry_, key_, name, value);
+    keep(checkVector(value, kMaxLength, name, "m"));
+  }
+  void orientation(const char* name, Eigen::Quaterniond& value) {
+    if (!has(entry_, name)) return;
+    // [x, y, z, w], as in geometry_msgs/Quaternion.
+    XmlRpcValue& q = entry_[name];
+    const std::string qk = key_ + "." + name;
+    requireArray(q, qk);
+    if (q.size() != 4) throw ParamError(qk, "expected a quaternion [x, y, z, w]");
+    value = Eigen::Quaterniond(readReal(q[3], indexed(qk, 3)), readReal(q[0], indexed(qk, 0)),
+                               readReal(q[1], indexed(qk, 1)), readReal(q[2], indexed(qk, 2)));
+  }
+
+ private:
+  void keep(const engine::Status& status) {
+    if (bounds && !status) bounds = status;
+  }
+  XmlRpcValue& entry_;
+  std::string key_;
+};
+
+}  // namespace
+
 void readColliders(XmlRpcValue& list, const std::string& key, engine::World& world) {
   requireArray(list, key);
+  std::string known;
+  engine::forEachKind(engine::ShapeKinds{}, [&](const auto tag) {
+    using Shape = typename decltype(tag)::type;
+    known += (known.empty() ? "" : ", ") + std::string(engine::ShapeKind<Shape>::kName);
+  });
   for (int i = 0; i < list.size(); ++i) {
     const std::string k = indexed(key, i);
     XmlRpcValue& c = list[i];
     const std::string type = stringOr(c, k, "type", "");
-    engine::Material material;
-    material.restitution = realOr(c, k, "restitution", material.restitution);
-    material.friction = realOr(c, k, "friction", material.friction);
-    engine::Result<engine::ColliderId> added = engine::Status::error("unknown collider");
-    // The node's bounds, reported after the engine's own checks (which name the rule first).
-    engine::Status bounds = engine::Status::ok();
-    if (type == "plane") {
-      checkKeys(c, k, {"type", "normal", "offset", "restitution", "friction"});
-      engine::PlaneCollider plane;
-      plane.normal = vec3Or(c, k, "normal", plane.normal);
-      plane.offset = realOr(c, k, "offset", plane.offset);
-      bounds = checkNonNegative(std::abs(plane.offset), kMaxCoordinate, "offset", "m (absolute)");
-      plane.material = material;
-      added = world.addPlane(plane);
-    } else if (type == "sphere") {
-      checkKeys(c, k, {"type", "center", "radius", "restitution", "friction"});
-      engine::SphereCollider sphere;
-      sphere.center = vec3Or(c, k, "center", sphere.center);
-      sphere.radius = realOr(c, k, "radius", sphere.radius);
-      bounds = checkPosition(sphere.center, "center");
-      if (bounds) bounds = checkNonNegative(sphere.radius, kMaxLength, "radius", "m");
-      sphere.material = material;
-      added = world.addSphere(sphere);
-    } else if (type == "box") {
-      checkKeys(c, k, {"type", "center", "half_extents", "orientation", "restitution", "friction"});
-      engine::BoxCollider box;
-      box.center = vec3Or(c, k, "center", box.center);
-      box.half_extents = vec3Or(c, k, "half_extents", box.half_extents);
-      bounds = checkPosition(box.center, "center");
-      if (bounds) bounds = checkVector(box.half_extents, kMaxLength, "half_extents", "m");
-      if (has(c, "orientation")) {
-        // [x, y, z, w], as in geometry_msgs/Quaternion.
-        XmlRpcValue& q = c["orientation"];
-        const std::string qk = k + ".orientation";
-        requireArray(q, qk);
-        if (q.size() != 4) throw ParamError(qk, "expected a quaternion [x, y, z, w]");
-        box.orientation =
-            Eigen::Quaterniond(readReal(q[3], indexed(qk, 3)), readReal(q[0], indexed(qk, 0)),
-                               readReal(q[1], indexed(qk, 1)), readReal(q[2], indexed(qk, 2)));
-      }
-      box.material = material;
-      added = world.addBox(box);
-    } else if (type == "capsule") {
-      checkKeys(c, k, {"type", "a", "b", "radius", "restitution", "friction"});
-      engine::CapsuleCollider capsule;
-      capsule.a = vec3Or(c, k, "a", capsule.a);
-      capsule.b = vec3Or(c, k, "b", capsule.b);
-      capsule.radius = realOr(c, k, "radius", capsule.radius);
-      bounds = checkPosition(capsule.a, "a");
-      if (bounds) bounds = checkPosition(capsule.b, "b");
-      if (bounds) bounds = checkNonNegative(capsule.radius, kMaxLength, "radius", "m");
-      capsule.material = material;
-      added = world.addCapsule(capsule);
-    } else {
+    bool matched = false;
+    // Every collider kind the engine has, read through the fields it declares.
+    engine::forEachKind(engine::ShapeKinds{}, [&](const auto tag) {
+      using Shape = typename decltype(tag)::type;
+      if (matched || type != engine::ShapeKind<Shape>::kName) return;
+      matched = true;
+      Shape shape;
+      FieldNames names;
+      engine::ShapeKind<Shape>::fields(shape, names);
+      checkKeys(c, k, names.names);
+      shape.material.restitution = realOr(c, k, "restitution", shape.material.restitution);
+      shape.material.friction = realOr(c, k, "friction", shape.material.friction);
+      FieldReader reader(c, k);
+      engine::ShapeKind<Shape>::fields(shape, reader);
+      const engine::Result<engine::ColliderId> added = world.addCollider(shape);
+      if (!added) throw ParamError(k, added.message());
+      throwIfBad(reader.bounds, k);
+    });
+    if (!matched) {
       throw ParamError(k + ".type",
-                       "unknown collider '" + type + "' (known: plane, sphere, box, capsule)");
+                       "unknown collider " + quoteInput(type) + " (known: " + known + ")");
     }
-    if (!added) throw ParamError(k, added.message());
-    throwIfBad(bounds, k);
   }
 }
 

@@ -5,9 +5,10 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/integrator.h"
+#include "mass_aggregate_sim/engine/integrators/integrator.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/scene_contacts.h"
@@ -56,7 +57,7 @@ class SceneBuilder {
     LoadedScene loaded;
     const std::string key = "scene";
     if (scene.getType() == XmlRpcValue::TypeInvalid) {
-      loaded.world = engine::World(config(scene, key, loaded));
+      loaded.world = makeWorld(config(scene, key, loaded), key);
       return loaded;
     }
     checkKeys(scene, key,
@@ -64,7 +65,7 @@ class SceneBuilder {
                "particles", "lines", "blocks", "links", "forces", "colliders", "collisions"});
     loaded.name = stringOr(scene, key, "name", "");
     loaded.description = stringOr(scene, key, "description", "");
-    world_ = engine::World(config(scene, key, loaded));
+    world_ = makeWorld(config(scene, key, loaded), key);
     if (has(scene, "collisions"))
       readCollisionSettings(scene["collisions"], key + ".collisions", world_);
     if (has(scene, "colliders")) readColliders(scene["colliders"], key + ".colliders", world_);
@@ -78,6 +79,14 @@ class SceneBuilder {
   }
 
  private:
+  // The engine checks the config as a whole (e.g. dt <= 1 s, so a rate below 1 Hz): a refusal
+  // stops the load with its reason instead of running on other settings.
+  static engine::World makeWorld(const engine::WorldConfig& config, const std::string& key) {
+    engine::Result<engine::World> world = engine::World::create(config);
+    if (!world) throw ParamError(key, world.message());
+    return std::move(world).take();
+  }
+
   engine::WorldConfig config(XmlRpcValue& scene, const std::string& key, LoadedScene& loaded) {
     engine::WorldConfig config;
     // The scene gives its step either as a rate (Hz) or as dt (s), not both.
@@ -111,9 +120,9 @@ class SceneBuilder {
                                        : stringOr(scene, key, "integrator", "semi_implicit_euler");
     const auto parsed = engine::parseIntegrator(integrator);
     if (!parsed) {
-      throw ParamError(
-          overrides_.integrator ? "~integrator" : key + ".integrator",
-          "unknown integrator '" + integrator + "' (known: " + engine::integratorNames() + ")");
+      throw ParamError(overrides_.integrator ? "~integrator" : key + ".integrator",
+                       "unknown integrator " + quoteInput(integrator) +
+                           " (known: " + engine::integratorNames() + ")");
     }
     config.integrator = *parsed;
     config.gravity =
@@ -135,7 +144,7 @@ class SceneBuilder {
                                 std::to_string(overrides_.max_particles) + ") particles");
     }
     if (!spec.name.empty() && world_.particles().findByName(spec.name)) {
-      throw ParamError(key, "the particle name '" + spec.name + "' is used twice");
+      throw ParamError(key, "the particle name " + quoteInput(spec.name) + " is used twice");
     }
     throwIfBad(checkParticleSpec(spec, overrides_.world_frame), key);
     const auto added = world_.addParticle(spec);
@@ -286,8 +295,8 @@ class SceneBuilder {
     const std::string type = stringOr(s, k, "type", "");
     const auto parsed = parseLinkType(type);
     if (!parsed) {
-      throw ParamError(k + ".type",
-                       "unknown link type '" + type + "' (known: " + linkTypeNames() + ")");
+      throw ParamError(k + ".type", "unknown link type " + quoteInput(type) +
+                                        " (known: " + linkTypeNames() + ")");
     }
     request.type = *parsed;
     request.stiffness = realOr(s, k, "stiffness", 0.0);
@@ -347,7 +356,8 @@ class SceneBuilder {
     for (int j = 0; j < names.size(); ++j) {
       const std::string name = readString(names[j], indexed(k + ".particles", j));
       const auto id = world_.particles().findByName(name);
-      if (!id) throw ParamError(indexed(k + ".particles", j), "no particle named '" + name + "'");
+      if (!id)
+        throw ParamError(indexed(k + ".particles", j), "no particle named " + quoteInput(name));
       ids.push_back(*id);
     }
     return ids;
@@ -365,7 +375,7 @@ class SceneBuilder {
         const Real k2 = realOr(force, k, "k2", 0.0);
         for (const auto id : readTargets(force, k)) {
           checkLinkCount(k);
-          const auto added = world_.addDrag(engine::Drag{id, k1, k2});
+          const auto added = world_.addGenerator(engine::Drag{id, k1, k2});
           if (!added) throw ParamError(k, added.message());
         }
       } else if (type == "buoyancy") {
@@ -381,11 +391,12 @@ class SceneBuilder {
         for (const auto id : readTargets(force, k)) {
           buoyancy.particle = id;
           checkLinkCount(k);
-          const auto added = world_.addBuoyancy(buoyancy);
+          const auto added = world_.addGenerator(buoyancy);
           if (!added) throw ParamError(k, added.message());
         }
       } else {
-        throw ParamError(k + ".type", "unknown force '" + type + "' (known: drag, buoyancy)");
+        throw ParamError(k + ".type",
+                         "unknown force " + quoteInput(type) + " (known: drag, buoyancy)");
       }
     }
   }

@@ -1,42 +1,60 @@
+// SimNode's construction and its world thread: the fixed-rate loop, ~step runs, frames.
 #include "mass_aggregate_sim/node/sim_node.h"
 
 #include <geometry_msgs/TransformStamped.h>
 #include <rosgraph_msgs/Clock.h>
-#include <visualization_msgs/MarkerArray.h>
+#include <std_msgs/String.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <thread>
-#include <tuple>
 #include <utility>
 
 #include "mass_aggregate_sim/Command.h"
-#include "mass_aggregate_sim/ParticleArray.h"
-#include "mass_aggregate_sim/SimStats.h"
 #include "mass_aggregate_sim/node/conversions.h"
-#include "mass_aggregate_sim/node/input_limits.h"
+#include "mass_aggregate_sim/node/reconfigure.h"
 
 namespace mass_aggregate_sim {
 namespace node {
 
 using engine::Vec3;
 
+namespace {
+
+// A ~step run yields to requests and publishing at least this often.
+constexpr std::chrono::milliseconds kRunSlice(20);
+
+}  // namespace
+
 SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const NodeParams& params)
     : params_(params),
       scene_name_(scene.name),
+      scene_source_(scene.source),
       rate_(scene.rate),
+      publish_rate_(params.publish_rate),
       sim_(scene.world, params.limits),
       paused_(params.paused),
-      scene_hash_(scene.world.stateHash()),
+      scene_hash_(sceneHash(scene.world)),
+      configuration_(describeConfiguration(sim_.settings())),
+      colliders_(scene.world.colliders()),
       markers_(params.frame_id, params.tension_scale),
       nh_(private_nh),
-      tf_listener_(tf_buffer_) {
+      tf_listener_(tf_buffer_),
+      step_nh_(private_nh),
+      step_action_(private_nh, "step", false),
+      diagnostics_(ros::NodeHandle(), private_nh) {
   particles_pub_ = nh_.advertise<ParticleArray>("particles", 1);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   stats_pub_ = nh_.advertise<SimStats>("stats", 1);
   commands_pub_ = nh_.advertise<Command>("commands", 100);
+  configuration_pub_ = nh_.advertise<std_msgs::String>("configuration", 1, true);
   if (params_.publish_clock)
     clock_pub_ = ros::NodeHandle().advertise<rosgraph_msgs::Clock>("/clock", 1);
   publishColliderFrames();
+  std_msgs::String configuration;
+  configuration.data = configuration_;
+  configuration_pub_.publish(configuration);
+
   services_.push_back(nh_.advertiseService("spawn", &SimNode::onSpawn, this));
   services_.push_back(nh_.advertiseService("remove", &SimNode::onRemove, this));
   services_.push_back(nh_.advertiseService("set_state", &SimNode::onSetState, this));
@@ -45,8 +63,46 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
   services_.push_back(nh_.advertiseService("add_link", &SimNode::onAddLink, this));
   services_.push_back(nh_.advertiseService("remove_link", &SimNode::onRemoveLink, this));
   services_.push_back(nh_.advertiseService("pause", &SimNode::onPause, this));
-  services_.push_back(nh_.advertiseService("step", &SimNode::onStep, this));
   services_.push_back(nh_.advertiseService("reset", &SimNode::onReset, this));
+  step_nh_.setCallbackQueue(&step_queue_);
+  step_service_ = step_nh_.advertiseService("step", &SimNode::onStep, this);
+
+  step_action_.registerGoalCallback([this] { onStepGoal(); });
+  step_action_.registerPreemptCallback([this] { onStepPreempt(); });
+  action_timer_ = nh_.createWallTimer(ros::WallDuration(0.01),
+                                      [this](const ros::WallTimerEvent&) { onActionTimer(); });
+
+  // The reconfigure server starts from the parameter server; the node's real settings (the
+  // scene's, with the parameters as overrides) replace that before the callback is set, so the
+  // server and the parameter server show what runs.
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimConfig>>(reconfigure_mutex_, nh_);
+  syncReconfigure([this](LiveSettings& shown) {
+    shown = liveSettingsOf(sim_.settings(), publish_rate_, paused_);
+  });
+  reconfigure_->setCallback(
+      [this](SimConfig& config, const std::uint32_t level) { onReconfigure(config, level); });
+
+  diagnostics_.setHardwareID(scene_name_.empty() ? "mass_aggregate_sim" : scene_name_);
+  diagnostics_.add("Step rate", [this](diagnostic_updater::DiagnosticStatusWrapper& out) {
+    stepRateStatus(diagnostic_inputs_, out);
+  });
+  diagnostics_.add("Step cost", [this](diagnostic_updater::DiagnosticStatusWrapper& out) {
+    stepCostStatus(diagnostic_inputs_, out);
+  });
+  diagnostics_.add("Stability", [this](diagnostic_updater::DiagnosticStatusWrapper& out) {
+    stabilityStatus(diagnostic_inputs_, out);
+  });
+  diagnostics_.add("Contacts", [this](diagnostic_updater::DiagnosticStatusWrapper& out) {
+    contactsStatus(diagnostic_inputs_, out);
+  });
+  diagnostics_.add("Capacity", [this](diagnostic_updater::DiagnosticStatusWrapper& out) {
+    capacityStatus(diagnostic_inputs_, out);
+  });
+}
+
+SimNode::~SimNode() {
+  frames_.stop();
+  if (publisher_.joinable()) publisher_.join();
 }
 
 ros::Time SimNode::clockTime() const {
@@ -62,6 +118,7 @@ void SimNode::stepOnce() {
   window_step_cost_sum_ += cost;
   window_step_cost_max_ = std::max(window_step_cost_max_, cost);
   ++window_steps_;
+  ++steps_total_;
   const auto& divergence = sim_.world().lastDivergence();
   if (divergence && divergence->step == sim_.world().stepCount()) {
     ROS_ERROR_THROTTLE(1.0, "divergence at step %lu: particle %s: %s",
@@ -78,7 +135,6 @@ void SimNode::publishClock() {
 }
 
 void SimNode::publishColliderFrames() {
-  const engine::Colliders& colliders = sim_.world().colliders();
   std::vector<geometry_msgs::TransformStamped> frames;
   const auto frame = [&](const engine::ColliderId id, const Vec3& origin,
                          const Eigen::Quaterniond& orientation) {
@@ -93,57 +149,116 @@ void SimNode::publishColliderFrames() {
     t.transform.rotation.w = orientation.w();
     frames.push_back(t);
   };
-  // Planes: z along the normal; capsules: z from a to b, origin at the middle.
-  for (const auto& c : colliders.planes) {
-    frame(c.id, c.normal * c.offset, Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.normal));
-  }
-  for (const auto& c : colliders.spheres) frame(c.id, c.center, Eigen::Quaterniond::Identity());
-  for (const auto& c : colliders.boxes) frame(c.id, c.center, c.orientation.normalized());
-  for (const auto& c : colliders.capsules) {
-    frame(c.id, 0.5 * (c.a + c.b), Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.b - c.a));
-  }
+  // Where each kind puts its frame (ShapeKind::describe): planes z along the normal, capsules z
+  // from a to b with the origin at the middle.
+  colliders_.forEach([&](const auto& shapes) {
+    using Shape = typename std::decay_t<decltype(shapes)>::value_type;
+    for (const Shape& shape : shapes) {
+      const engine::ShapeDescription description = engine::ShapeKind<Shape>::describe(shape);
+      frame(shape.id, description.origin, description.orientation);
+    }
+  });
   if (!frames.empty()) static_broadcaster_.sendTransform(frames);
 }
 
-void SimNode::publishTf(const ros::Time& stamp) {
-  // tf2 drops a second transform with the same stamp (paused, or just after a reset).
-  if (stamp <= last_tf_stamp_) return;
-  last_tf_stamp_ = stamp;
-  const engine::ParticleStore& particles = sim_.world().particles();
-  const auto x = particles.positions();
-  std::vector<geometry_msgs::TransformStamped> transforms;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (particles.name(i).empty()) continue;
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = params_.frame_id;
-    t.child_frame_id = particles.name(i);
-    t.transform.translation = toVector3Msg(x.col(i));
-    t.transform.rotation.w = 1.0;
-    transforms.push_back(t);
-  }
-  if (!transforms.empty()) tf_broadcaster_.sendTransform(transforms);
+void SimNode::configurationChanged() {
+  configuration_ = describeConfiguration(sim_.settings());
+  std_msgs::String configuration;
+  configuration.data = configuration_;
+  configuration_pub_.publish(configuration);
 }
 
-void SimNode::publishState(const Clock::time_point now) {
-  const engine::World& world = sim_.world();
-  const ros::Time stamp = clockTime();
-
-  // Building a 10,000-particle message costs time in this (the stepping) thread: only when
-  // someone listens.
-  if (particles_pub_.getNumSubscribers() > 0) {
-    ParticleArray particles;
-    particles.header.stamp = stamp;
-    particles.header.frame_id = params_.frame_id;
-    fillParticleArray(world, particles);
-    particles_pub_.publish(particles);
+void SimNode::startRun(StepRun run) {
+  const auto refuse = [&](const StepOutcome::Kind kind, const std::string& message) {
+    StepOutcome outcome;
+    outcome.kind = kind;
+    outcome.step = sim_.world().stepCount();
+    outcome.time = sim_.world().time();
+    outcome.state_hash = sim_.world().stateHash();
+    outcome.message = message;
+    run.finished->set_value(outcome);
+  };
+  if (run_) {
+    // A new action goal replaces the action's own run (the action server has cancelled it).
+    if (run.action && run_->action) {
+      finishRun(StepOutcome::kPreempted, "replaced by a new goal after " +
+                                             std::to_string(run_->done) + " of " +
+                                             std::to_string(run_->requested) + " steps");
+    } else {
+      refuse(StepOutcome::kAborted,
+             std::string("another step run is under way (") +
+                 (run_->action ? "the ~step action" : "a ~step service call") + ", " +
+                 std::to_string(run_->done) + " of " + std::to_string(run_->requested) +
+                 " steps done)");
+      return;
+    }
   }
+  if (run.cancel->load()) {
+    refuse(StepOutcome::kPreempted, "cancelled before it started");
+    return;
+  }
+  if (!paused_) {
+    refuse(StepOutcome::kAborted, "the simulation is running: pause it first (~pause)");
+    return;
+  }
+  run_ = std::move(run);
+}
 
-  if (markers_pub_.getNumSubscribers() > 0) markers_pub_.publish(markers_.build(world, stamp));
-  if (params_.publish_tf) publishTf(stamp);
+void SimNode::finishRun(const StepOutcome::Kind kind, const std::string& message) {
+  if (!run_) return;
+  StepOutcome outcome;
+  outcome.kind = kind;
+  outcome.steps_done = run_->done;
+  outcome.step = sim_.world().stepCount();
+  outcome.time = sim_.world().time();
+  outcome.state_hash = sim_.world().stateHash();
+  outcome.message = message;
+  if (run_->done > 0) {
+    Step::Request taken;
+    taken.steps = run_->done;
+    recordCommand("step", taken);
+  }
+  publishClock();
+  const std::shared_ptr<std::promise<StepOutcome>> finished = run_->finished;
+  run_.reset();
+  finished->set_value(outcome);
+  frames_.wake();
+}
 
-  SimStats stats;
-  stats.header.stamp = stamp;
+void SimNode::runSlice(const Clock::time_point until) {
+  while (run_ && run_->done < run_->requested) {
+    if (run_->cancel->load()) {
+      finishRun(StepOutcome::kPreempted, "cancelled after " + std::to_string(run_->done) + " of " +
+                                             std::to_string(run_->requested) + " steps");
+      return;
+    }
+    if (sim_.world().paused()) {
+      finishRun(StepOutcome::kAborted,
+                "the world stopped itself after a divergence (divergence_policy pause) after " +
+                    std::to_string(run_->done) + " steps: ~reset to go on");
+      return;
+    }
+    stepOnce();
+    ++run_->done;
+    if (Clock::now() >= until) break;
+  }
+  if (run_ && run_->done >= run_->requested) {
+    finishRun(StepOutcome::kSucceeded, "took " + std::to_string(run_->done) + " step(s)");
+  }
+}
+
+void SimNode::fillFrame(const Clock::time_point now) {
+  const engine::World& world = sim_.world();
+  Frame& frame = frames_.back();
+  takeSnapshot(world, frame.world);
+  frame.stamp = ros::Time::now();
+  frame.taken = now;
+  frame.scene_generation = scene_generation_;
+  frame.steps_total = steps_total_;
+  frame.ticks_total = ticks_total_;
+
+  SimStats& stats = frame.stats;
+  stats.header.stamp = frame.stamp;
   stats.header.frame_id = params_.frame_id;
   stats.step = world.stepCount();
   stats.time = world.time();
@@ -155,7 +270,8 @@ void SimNode::publishState(const Clock::time_point now) {
   stats.step_cost_mean = window_steps_ > 0 ? window_step_cost_sum_ / window_steps_ : 0.0;
   stats.step_cost_max = window_step_cost_max_;
   stats.overruns = overruns_;
-  stats.publish_cost = last_publish_cost_;
+  stats.publish_cost = last_publish_cost_.load();
+  stats.frame_cost = last_frame_cost_;
   stats.particles = world.particles().size();
   stats.force_generators = world.generators().size();
   stats.sustained_forces = sim_.sustainedForceCount();
@@ -166,50 +282,108 @@ void SimNode::publishState(const Clock::time_point now) {
   stats.total_energy = stats.kinetic_energy + stats.potential_energy;
   stats.momentum = toVector3Msg(world.linearMomentum());
   stats.divergence_events = world.divergenceCount();
+  stats.last_divergence.clear();
   if (world.lastDivergence()) {
     const auto& d = *world.lastDivergence();
     stats.last_divergence =
         "step " + std::to_string(d.step) + ", particle " + d.particle.str() + ": " + d.what;
   }
   stats.commands_applied = commands_applied_;
-  stats.state_hash = world.stateHash();
+  // World::stateHash() costs about half a step of a large pile (it hashes every contact's warm
+  // start too): while running in real time, once a second; else whenever the state changed.
+  const std::pair<std::uint64_t, std::uint64_t> state{steps_total_, commands_applied_};
+  const bool real_time = !paused_ && !run_;
+  if (state != hashed_state_ &&
+      (!real_time || now - hashed_at_ >= std::chrono::seconds(1) || window_steps_ == 0)) {
+    state_hash_ = world.stateHash();
+    state_hash_step_ = world.stepCount();
+    hashed_state_ = state;
+    hashed_at_ = now;
+  }
+  stats.state_hash = state_hash_;
+  stats.state_hash_step = state_hash_step_;
   stats.scene_hash = scene_hash_;
-  stats_pub_.publish(stats);
+  if (run_ && run_->action) {
+    const std::lock_guard<std::mutex> lock(progress_mutex_);
+    progress_ = RunProgress{run_->id, run_->done, stats.step, stats.time, stats.state_hash, true};
+  }
+
+  DiagnosticInputs& d = frame.diagnostics;
+  d.rate = rate_;
+  d.paused = paused_;
+  d.stepping_run = run_.has_value();
+  d.real_time_factor = stats.real_time_factor;
+  d.step_cost_mean = stats.step_cost_mean;
+  d.step_cost_max = stats.step_cost_max;
+  d.overruns_total = overruns_;
+  d.publish_cost = stats.publish_cost;
+  d.divergence_events = stats.divergence_events;
+  d.last_divergence = stats.last_divergence;
+  d.stability = world.stabilityReport();
+  d.contacts = world.lastContactStats();
+  d.max_iterations = world.collisionSettings().max_iterations;
+  d.particles = world.particles().size();
+  d.max_particles = params_.limits.max_particles;
+  d.links = world.generators().size() + world.links().size();
+  d.max_links = params_.limits.max_links;
+  d.sustained_forces = sim_.sustainedForceCount();
+  d.max_sustained_forces = params_.limits.max_sustained_forces;
 
   window_start_ = now;
   window_sim_time_ = clock_offset_ + world.time();
   window_step_cost_sum_ = 0.0;
   window_step_cost_max_ = 0.0;
   window_steps_ = 0;
+  frames_.publish();
+  last_frame_cost_ = std::chrono::duration<double>(Clock::now() - now).count();
 }
 
 void SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_));
-  const auto publish_period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(1.0 / params_.publish_rate));
-  ROS_INFO("scene '%s': %zu particles, %zu force generators, %.1f Hz%s", scene_name_.c_str(),
-           sim_.world().particles().size(), sim_.world().generators().size(), rate_,
-           paused_ ? ", paused" : "");
+  step_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &step_queue_);
+  step_spinner_->start();
+  step_action_.start();
+  char startup[512];
+  std::snprintf(
+      startup, sizeof startup,
+      "scene '%s' from %s: %zu particles, %zu force generators, %.1f Hz%s; scene hash %lu",
+      scene_name_.c_str(), scene_source_.c_str(), sim_.world().particles().size(),
+      sim_.world().generators().size(), rate_, paused_ ? ", paused" : "",
+      static_cast<unsigned long>(scene_hash_));
+  startup_line_ = startup;
+  publisher_ = std::thread([this] { publishLoop(); });
   Clock::time_point next = Clock::now();
   Clock::time_point next_publish = next;
   window_start_ = next;
   while (ros::ok()) {
     // Requests first: they are applied at the boundary before the step.
     queue_.drain();
-    if (!paused_) stepOnce();
+    const Clock::time_point tick = Clock::now();
+    const auto publish_period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / publish_rate_));
+    if (run_) {
+      runSlice(tick + std::min<Clock::duration>(kRunSlice, publish_period));
+    } else if (!paused_) {
+      stepOnce();
+      ++ticks_total_;
+    }
     // Every tick, paused or not, so nodes on simulated time always hear the clock.
     publishClock();
     Clock::time_point now = Clock::now();
     if (now >= next_publish) {
-      publishState(now);
-      last_publish_cost_ = std::chrono::duration<double>(Clock::now() - now).count();
+      fillFrame(now);
       next_publish += publish_period;
       if (next_publish < now) next_publish = now + publish_period;
     }
     now = Clock::now();
+    if (run_) {
+      // A run steps as fast as it can; the real-time schedule starts again when it ends.
+      next = now;
+      continue;
+    }
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_));
     next += period;
     if (now > next) {
       // Late: count it and start again from now rather than stepping faster to catch up, so the
@@ -219,8 +393,12 @@ void SimNode::run() {
     }
     std::this_thread::sleep_until(next);
   }
+  finishRun(StepOutcome::kAborted, "the node is shutting down");
   queue_.stop();
+  step_spinner_->stop();
   spinner.stop();
+  frames_.stop();
+  publisher_.join();
 }
 
 }  // namespace node

@@ -5,6 +5,7 @@
 
 #include "mass_aggregate_sim/Command.h"
 #include "mass_aggregate_sim/node/conversions.h"
+#include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/sim_node.h"
 
 namespace mass_aggregate_sim {
@@ -25,7 +26,7 @@ std::string describeTime(const engine::World& world) {
 ParticleRef refOf(const std::uint64_t id, const std::string& name) { return ParticleRef{id, name}; }
 
 std::string nameOf(const ParticleRef& ref) {
-  return ref.name.empty() ? "particle " + std::to_string(ref.id) : "'" + ref.name + "'";
+  return ref.name.empty() ? "particle " + std::to_string(ref.id) : quoteInput(ref.name);
 }
 
 template <typename Response>
@@ -45,12 +46,26 @@ bool SimNode::runOnWorldThread(Response& res, std::function<void()> job) {
 
 Result<Eigen::Isometry3d> SimNode::frameToWorld(const std::string& frame) const {
   if (frame.empty() || frame == params_.frame_id) return Eigen::Isometry3d::Identity();
+  if (frame.size() > kMaxNameLength) {
+    return Status::error("frame_id: at most " + std::to_string(kMaxNameLength) +
+                         " characters, got " + std::to_string(frame.size()));
+  }
+  // What tf holds now, at the latest time both frames share: a lookup with a timeout would wait
+  // on ROS time, which stands still under /use_sim_time while paused or without /clock.
+  const tf2::BufferCore& tf = tf_buffer_;
+  std::string error;
   geometry_msgs::TransformStamped t;
   try {
-    t = tf_buffer_.lookupTransform(params_.frame_id, frame, ros::Time(0), ros::Duration(0.5));
-  } catch (const tf2::TransformException& error) {
-    return Status::error("no transform from frame '" + frame + "' to '" + params_.frame_id +
-                         "': " + error.what());
+    if (!tf.canTransform(params_.frame_id, frame, ros::Time(0), &error)) {
+      throw tf2::LookupException(error);
+    }
+    t = tf.lookupTransform(params_.frame_id, frame, ros::Time(0));
+  } catch (const tf2::TransformException& exception) {
+    std::string reason = exception.what();
+    if (reason.size() > 2 * kMaxQuoted) reason = reason.substr(0, 2 * kMaxQuoted) + "...";
+    return Status::error("unknown frame " + quoteInput(frame) +
+                         ": tf has no transform from it to '" + params_.frame_id + "' (" + reason +
+                         ")");
   }
   const auto& q = t.transform.rotation;
   const auto& p = t.transform.translation;
@@ -62,18 +77,29 @@ Result<Eigen::Isometry3d> SimNode::frameToWorld(const std::string& frame) const 
 
 template <typename Request>
 void SimNode::recordCommand(const std::string& service, const Request& request) {
+  const std::uint32_t size = ros::serialization::serializationLength(request);
+  std::vector<std::uint8_t> bytes(size);
+  ros::serialization::OStream stream(bytes.data(), size);
+  ros::serialization::serialize(stream, request);
+  recordBytes(service, std::move(bytes));
+}
+
+void SimNode::recordBytes(const std::string& service, std::vector<std::uint8_t> bytes) {
   Command command;
-  command.header.stamp = clockTime();
+  command.header.stamp = ros::Time::now();
   command.header.frame_id = params_.frame_id;
   command.sequence = commands_applied_++;
   command.step = sim_.world().stepCount();
+  command.time = sim_.world().time();
   command.service = service;
-  const std::uint32_t size = ros::serialization::serializationLength(request);
-  command.request.resize(size);
-  ros::serialization::OStream stream(command.request.data(), size);
-  ros::serialization::serialize(stream, request);
+  command.request = std::move(bytes);
+  command.state_hash = sim_.world().stateHash();
+  command.scene_hash = scene_hash_;
+  command.configuration = configuration_;
   commands_pub_.publish(command);
 }
+
+template void SimNode::recordCommand(const std::string&, const Step::Request&);
 
 bool SimNode::onSpawn(Spawn::Request& req, Spawn::Response& res) {
   std::vector<engine::ParticleSpec> specs;
@@ -221,8 +247,9 @@ bool SimNode::onAddLink(AddLink::Request& req, AddLink::Response& res) {
   LinkRequest request;
   const auto type = parseLinkType(req.type);
   if (!type) {
-    return answer(res, false,
-                  "type: unknown link type '" + req.type + "' (known: " + linkTypeNames() + ")");
+    return answer(
+        res, false,
+        "type: unknown link type " + quoteInput(req.type) + " (known: " + linkTypeNames() + ")");
   }
   request.type = *type;
   request.a = refOf(req.a, req.a_name);
@@ -271,45 +298,30 @@ bool SimNode::onRemoveLink(RemoveLink::Request& req, RemoveLink::Response& res) 
 }
 
 bool SimNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
-  return runOnWorldThread(res, [&] {
+  runOnWorldThread(res, [&] {
     const bool was = paused_;
     paused_ = req.data;
     recordCommand("pause", req);
     const std::string state = paused_ ? "paused" : "running";
-    answer(res, true,
-           (was == paused_ ? "already " + state : state) + " at " + describeTime(sim_.world()));
-  });
-}
-
-bool SimNode::onStep(Step::Request& req, Step::Response& res) {
-  return runOnWorldThread(res, [&] {
-    if (!paused_) {
-      answer(res, false, "the simulation is running: pause it first (~pause)");
-      return;
+    std::string note;
+    if (run_ && !paused_) {
+      note = " (the ~step run under way finishes first)";
     }
-    if (req.steps == 0 || req.steps > params_.limits.max_steps_per_request) {
-      answer(res, false,
-             "steps must be in [1, " + std::to_string(params_.limits.max_steps_per_request) +
-                 "], got " + std::to_string(req.steps));
-      return;
-    }
-    recordCommand("step", req);
-    sim_.stepMany(req.steps);
-    publishClock();
-    res.step = sim_.world().stepCount();
-    res.time = sim_.world().time();
-    res.state_hash = sim_.world().stateHash();
-    answer(res, true,
-           "took " + std::to_string(req.steps) + " step(s): " + describeTime(sim_.world()));
+    answer(
+        res, true,
+        (was == paused_ ? "already " + state : state) + " at " + describeTime(sim_.world()) + note);
   });
+  if (res.success) syncReconfigure([&](LiveSettings& shown) { shown.paused = req.data; });
+  return true;
 }
 
 bool SimNode::onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res) {
   return runOnWorldThread(res, [&] {
+    finishRun(StepOutcome::kAborted, "~reset while the run was under way");
     recordCommand("reset", req);
     clock_offset_ += sim_.world().time();
     sim_.reset();
-    markers_.restart();
+    ++scene_generation_;
     publishClock();
     answer(res, true, "back to the scene '" + scene_name_ + "' at " + describeTime(sim_.world()));
   });

@@ -43,7 +43,7 @@ Result<std::vector<ParticleId>> Simulation::spawn(const std::vector<engine::Part
     const std::string& name = specs[i].name;
     if (name.empty()) continue;
     if (world_.particles().findByName(name) || !names.insert(name).second) {
-      return Status::error(where + "the name '" + name + "' is already taken");
+      return Status::error(where + "the name " + quoteInput(name) + " is already taken");
     }
   }
   std::vector<ParticleId> ids;
@@ -194,6 +194,27 @@ Status Simulation::stepMany(const std::uint32_t n) {
 void Simulation::reset() {
   world_ = scene_;
   sustained_.clear();
+  if (configured_) configure(*configured_);
+}
+
+PhysicsSettings Simulation::settings() const {
+  return PhysicsSettings{world_.config(), world_.collisionSettings()};
+}
+
+Status Simulation::configure(const PhysicsSettings& settings) {
+  const Status valid = engine::validateConfig(settings.config);
+  if (!valid) return valid;
+  const Status collisions = engine::validateCollisionSettings(settings.collisions);
+  if (!collisions) return collisions;
+  world_.setConfig(settings.config);
+  world_.setCollisionSettings(settings.collisions);
+  if (settings.config.divergence_policy == engine::DivergencePolicy::kReset) {
+    world_.setResetSnapshot();
+  } else {
+    world_.clearResetSnapshot();
+  }
+  configured_ = settings;
+  return Status::ok();
 }
 
 }  // namespace node

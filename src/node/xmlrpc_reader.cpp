@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "mass_aggregate_sim/node/input_limits.h"
+
 namespace mass_aggregate_sim {
 namespace node {
 
@@ -54,17 +56,21 @@ void requireArray(const XmlRpcValue& value, const std::string& key) {
   }
 }
 
-void checkKeys(XmlRpcValue& s, const std::string& key,
-               const std::initializer_list<const char*> allowed) {
+void checkKeys(XmlRpcValue& s, const std::string& key, const std::vector<std::string>& allowed) {
   requireStruct(s, key);
   for (auto it = s.begin(); it != s.end(); ++it) {
     bool known = false;
-    for (const char* name : allowed) known = known || it->first == name;
+    for (const std::string& name : allowed) known = known || it->first == name;
     if (known) continue;
     std::string list;
-    for (const char* name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+    for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
     throw ParamError(key + "." + it->first, "unknown key (known here: " + list + ")");
   }
+}
+
+void checkKeys(XmlRpcValue& s, const std::string& key,
+               const std::initializer_list<const char*> allowed) {
+  checkKeys(s, key, std::vector<std::string>(allowed.begin(), allowed.end()));
 }
 
 engine::Real readReal(XmlRpcValue& value, const std::string& key) {
@@ -80,7 +86,7 @@ engine::Real readReal(XmlRpcValue& value, const std::string& key) {
     std::strtod(text.c_str(), &end);
     const bool numeric = !text.empty() && end == text.c_str() + text.size();
     throw ParamError(key,
-                     "expected a number, got the string '" + text + "'" +
+                     "expected a number, got the string " + quoteInput(text) +
                          (numeric ? " (YAML 1.1 exponents need a dot and a sign: 1.0e+6)" : ""));
   } else {
     throw ParamError(key, "expected a number, got " + typeName(value));

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
 namespace fuzz {
@@ -103,30 +103,34 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
         break;
       case 3:
         accepted =
-            world.addSpring(Spring{pickId(), pickId(), in.real(), in.real(), in.real()}).isOk();
+            world.addGenerator(Spring::between(pickId(), pickId(), in.real(), in.real(), in.real()))
+                .isOk();
         break;
       case 4:
         accepted =
-            world.addBungee(Bungee{pickId(), pickId(), in.real(), in.real(), in.real()}).isOk();
+            world
+                .addGenerator(Spring::between(pickId(), pickId(), in.real(), in.real(), in.real())
+                                  .pullingOnly())
+                .isOk();
         break;
       case 5:
         accepted = world
-                       .addAnchoredSpring(
-                           AnchoredSpring{pickId(), in.vec3(), in.real(), in.real(), in.real()})
+                       .addGenerator(
+                           Spring::anchoredAt(pickId(), in.vec3(), in.real(), in.real(), in.real()))
                        .isOk();
         break;
       case 6:
-        accepted = world.addDrag(Drag{pickId(), in.real(), in.real()}).isOk();
+        accepted = world.addGenerator(Drag{pickId(), in.real(), in.real()}).isOk();
         break;
       case 7:
         accepted = world
-                       .addBuoyancy(Buoyancy{pickId(), in.real(), in.real(), in.real(), in.real(),
-                                             in.vec3()})
+                       .addGenerator(Buoyancy{pickId(), in.real(), in.real(), in.real(), in.real(),
+                                              in.vec3()})
                        .isOk();
         break;
       case 8:
         accepted =
-            world.addStiffSpring(StiffSpring{pickId(), in.vec3(), in.real(), in.real()}).isOk();
+            world.addGenerator(StiffSpring{pickId(), in.vec3(), in.real(), in.real()}).isOk();
         break;
       case 9:
         accepted = world.setPosition(pickId(), in.vec3()).isOk();

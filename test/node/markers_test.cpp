@@ -57,8 +57,8 @@ TEST(MarkersTest, VanishedMarkersAreDeletedAndRestartClearsAll) {
   engine::World world;
   const auto a = add(world, Vec3(0, 0, 0), 0.1);
   const auto b = add(world, Vec3(1, 0, 0), 0.3);
-  engine::Spring spring{a, b, 10.0, 0.5, 0.0};
-  const auto link = world.addSpring(spring);
+  const engine::Spring spring = engine::Spring::between(a, b, 10.0, 0.5, 0.0);
+  const auto link = world.addGenerator(spring);
   ASSERT_TRUE(link.isOk());
   MarkerBuilder builder("world", 10.0);
   const auto first = builder.build(world, ros::Time(1.0));
@@ -82,8 +82,8 @@ TEST(MarkersTest, LinksAreColouredByTension) {
   const auto a = add(world, Vec3(0, 0, 0), 0.1);
   const auto b = add(world, Vec3(2, 0, 0), 0.1);
   const auto c = add(world, Vec3(0, 1, 0), 0.1);
-  world.addSpring(engine::Spring{a, b, 10.0, 1.0, 0.0});  // stretched by 1 m: 10 N
-  world.addSpring(engine::Spring{a, c, 10.0, 2.0, 0.0});  // compressed by 1 m: -10 N
+  world.addGenerator(engine::Spring::between(a, b, 10.0, 1.0, 0.0));  // stretched by 1 m: 10 N
+  world.addGenerator(engine::Spring::between(a, c, 10.0, 2.0, 0.0));  // compressed by 1 m: -10 N
   MarkerBuilder builder("world", 10.0);
   const auto array = builder.build(world, ros::Time(1.0));
   const Marker* lines = nullptr;
@@ -111,12 +111,10 @@ TEST(MarkersTest, CablesAndRodsAreColouredByTheirTension) {
   engine::World world(config);
   const auto hanging = add(world, Vec3(0, 0, -1), 0.1);  // 1 kg below a cable: +9.81 N
   const auto standing = add(world, Vec3(3, 0, 1), 0.1);  // 1 kg on top of a rod: -9.81 N
-  ASSERT_TRUE(
-      world.addAnchoredCable(engine::AnchoredCable{hanging, Vec3(0, 0, 0), 1.0, 0.0}).isOk());
+  ASSERT_TRUE(world.addLink(engine::Cable::anchoredAt(hanging, Vec3(0, 0, 0), 1.0, 0.0)).isOk());
   // 1 m from its anchor on a 2 m cable: slack.
-  ASSERT_TRUE(
-      world.addAnchoredCable(engine::AnchoredCable{standing, Vec3(3, 0, 2), 2.0, 0.0}).isOk());
-  ASSERT_TRUE(world.addAnchoredRod(engine::AnchoredRod{standing, Vec3(3, 0, 0), 1.0}).isOk());
+  ASSERT_TRUE(world.addLink(engine::Cable::anchoredAt(standing, Vec3(3, 0, 2), 2.0, 0.0)).isOk());
+  ASSERT_TRUE(world.addLink(engine::Rod::anchoredAt(standing, Vec3(3, 0, 0), 1.0)).isOk());
   for (int s = 0; s < 120; ++s) world.step();
   MarkerBuilder builder("world", 2.0 * 9.81);  // the weight is half the scale
   const auto array = builder.build(world, ros::Time(1.0));
@@ -139,15 +137,15 @@ TEST(MarkersTest, CablesAndRodsAreColouredByTheirTension) {
 
 TEST(MarkersTest, CollidersAreDrawnAsTheirShapes) {
   engine::World world;
-  ASSERT_TRUE(world.addPlane(engine::PlaneCollider{}).isOk());
+  ASSERT_TRUE(world.addCollider(engine::PlaneCollider{}).isOk());
   engine::SphereCollider sphere;
   sphere.center = Vec3(1, 2, 3);
   sphere.radius = 0.5;
-  ASSERT_TRUE(world.addSphere(sphere).isOk());
+  ASSERT_TRUE(world.addCollider(sphere).isOk());
   engine::BoxCollider box;
   box.half_extents = Vec3(1, 2, 3);
-  ASSERT_TRUE(world.addBox(box).isOk());
-  ASSERT_TRUE(world.addCapsule(engine::CapsuleCollider{}).isOk());
+  ASSERT_TRUE(world.addCollider(box).isOk());
+  ASSERT_TRUE(world.addCollider(engine::CapsuleCollider{}).isOk());
   MarkerBuilder builder("world", 10.0);
   const auto array = builder.build(world, ros::Time(1.0));
   std::map<int, int> types;

@@ -80,6 +80,13 @@ TEST(SceneLoaderTest, StepGivenAsDt) {
   expectError("{dt: 0}", "scene.dt", "must be > 0");
 }
 
+TEST(SceneLoaderTest, ConfigTheEngineRefusesStopsTheLoad) {
+  // dt = 2 s: every field is a number in its range, but the engine's steps are at most 1 s. The
+  // load must fail with the engine's reason, not run the scene at another rate.
+  expectError("rate: 0.5", "scene", "dt must be finite and in (0, 1] s");
+  expectError("dt: 2.0", "scene", "dt must be finite and in (0, 1] s");
+}
+
 TEST(SceneLoaderTest, OverridesWinOverTheScene) {
   SceneOverrides overrides;
   overrides.rate = 250.0;
@@ -117,9 +124,9 @@ lines:
     EXPECT_TRUE(Vec3(world.particles().positions().col(i)).isApprox(Vec3(j, 0, 3))) << j;
     EXPECT_EQ(world.particles().inverseMasses()[i], (j == 0 || j == 3) ? 0.0 : 2.0) << j;
   }
-  ASSERT_EQ(world.generators().springs.size(), 3u);
+  ASSERT_EQ(world.generators().of<engine::Spring>().size(), 3u);
   // rest_length defaults to the distance at load time: the chain starts unstretched.
-  for (const auto& spring : world.generators().springs) {
+  for (const auto& spring : world.generators().of<engine::Spring>()) {
     EXPECT_DOUBLE_EQ(spring.rest_length, 1.0);
     EXPECT_DOUBLE_EQ(spring.stiffness, 150.0);
     EXPECT_DOUBLE_EQ(spring.damping, 0.5);
@@ -157,13 +164,18 @@ links:
 )");
   ASSERT_TRUE(loaded.isOk()) << loaded.message();
   const auto& g = loaded.value().world.generators();
-  ASSERT_EQ(g.bungees.size(), 1u);
-  EXPECT_DOUBLE_EQ(g.bungees[0].rest_length, 1.0);
-  ASSERT_EQ(g.anchored_springs.size(), 1u);
-  EXPECT_DOUBLE_EQ(g.anchored_springs[0].rest_length, 5.0);
-  EXPECT_EQ(g.anchored_springs[0].anchor, Vec3(0, 0, 5));
-  ASSERT_EQ(g.stiff_springs.size(), 1u);
-  EXPECT_DOUBLE_EQ(g.stiff_springs[0].stiffness, 1.0e6);
+  // The bungee, then the anchored spring, in the scene's order.
+  const auto& springs = g.of<engine::Spring>();
+  ASSERT_EQ(springs.size(), 2u);
+  EXPECT_TRUE(springs[0].pull_only);
+  EXPECT_FALSE(springs[0].anchored());
+  EXPECT_DOUBLE_EQ(springs[0].rest_length, 1.0);
+  EXPECT_FALSE(springs[1].pull_only);
+  EXPECT_TRUE(springs[1].anchored());
+  EXPECT_DOUBLE_EQ(springs[1].rest_length, 5.0);
+  EXPECT_EQ(springs[1].anchor, Vec3(0, 0, 5));
+  ASSERT_EQ(g.of<engine::StiffSpring>().size(), 1u);
+  EXPECT_DOUBLE_EQ(g.of<engine::StiffSpring>()[0].stiffness, 1.0e6);
 }
 
 TEST(SceneLoaderTest, ForcesApplyToAllMovableOrNamedParticles) {
@@ -178,9 +190,10 @@ forces:
 )");
   ASSERT_TRUE(loaded.isOk()) << loaded.message();
   const auto& g = loaded.value().world.generators();
-  EXPECT_EQ(g.drags.size(), 2u);
-  ASSERT_EQ(g.buoyancies.size(), 1u);
-  EXPECT_EQ(g.buoyancies[0].particle, *loaded.value().world.particles().findByName("b"));
+  EXPECT_EQ(g.of<engine::Drag>().size(), 2u);
+  ASSERT_EQ(g.of<engine::Buoyancy>().size(), 1u);
+  EXPECT_EQ(g.of<engine::Buoyancy>()[0].particle,
+            *loaded.value().world.particles().findByName("b"));
 }
 
 TEST(SceneLoaderTest, BadScenesNameTheKeyAndTheReason) {
@@ -291,26 +304,31 @@ links:
   EXPECT_TRUE(c.collide_linked);
   EXPECT_EQ(c.max_contacts, 500u);
   const auto& colliders = world.colliders();
-  ASSERT_EQ(colliders.planes.size(), 1u);
-  EXPECT_TRUE(colliders.planes[0].normal.isApprox(Vec3::UnitZ()));
-  EXPECT_DOUBLE_EQ(colliders.planes[0].material.restitution, 0.3);
-  EXPECT_DOUBLE_EQ(colliders.planes[0].material.friction, 0.7);
-  ASSERT_EQ(colliders.spheres.size(), 1u);
-  EXPECT_EQ(colliders.spheres[0].center, Vec3(1, 2, 3));
-  ASSERT_EQ(colliders.boxes.size(), 1u);
-  EXPECT_EQ(colliders.boxes[0].half_extents, Vec3(1, 2, 3));
-  ASSERT_EQ(colliders.capsules.size(), 1u);
-  EXPECT_DOUBLE_EQ(colliders.capsules[0].radius, 0.25);
+  ASSERT_EQ(colliders.of<engine::PlaneCollider>().size(), 1u);
+  EXPECT_TRUE(colliders.of<engine::PlaneCollider>()[0].normal.isApprox(Vec3::UnitZ()));
+  EXPECT_DOUBLE_EQ(colliders.of<engine::PlaneCollider>()[0].material.restitution, 0.3);
+  EXPECT_DOUBLE_EQ(colliders.of<engine::PlaneCollider>()[0].material.friction, 0.7);
+  ASSERT_EQ(colliders.of<engine::SphereCollider>().size(), 1u);
+  EXPECT_EQ(colliders.of<engine::SphereCollider>()[0].center, Vec3(1, 2, 3));
+  ASSERT_EQ(colliders.of<engine::BoxCollider>().size(), 1u);
+  EXPECT_EQ(colliders.of<engine::BoxCollider>()[0].half_extents, Vec3(1, 2, 3));
+  ASSERT_EQ(colliders.of<engine::CapsuleCollider>().size(), 1u);
+  EXPECT_DOUBLE_EQ(colliders.of<engine::CapsuleCollider>()[0].radius, 0.25);
   const auto& links = world.links();
-  ASSERT_EQ(links.cables.size(), 1u);
-  EXPECT_DOUBLE_EQ(links.cables[0].max_length, 4.0);
-  EXPECT_DOUBLE_EQ(links.cables[0].restitution, 0.5);
-  ASSERT_EQ(links.rods.size(), 1u);
-  EXPECT_DOUBLE_EQ(links.rods[0].length, 3.0);  // the distance at load time
-  ASSERT_EQ(links.anchored_cables.size(), 1u);
-  EXPECT_DOUBLE_EQ(links.anchored_cables[0].max_length, 2.0);
-  ASSERT_EQ(links.anchored_rods.size(), 1u);
-  EXPECT_DOUBLE_EQ(links.anchored_rods[0].length, 1.5);
+  // Each kind in the scene's order: the particle-particle one first, then the anchored one.
+  const auto& cables = links.of<engine::Cable>();
+  const auto& rods = links.of<engine::Rod>();
+  ASSERT_EQ(cables.size(), 2u);
+  EXPECT_FALSE(cables[0].anchored());
+  EXPECT_DOUBLE_EQ(cables[0].max_length, 4.0);
+  EXPECT_DOUBLE_EQ(cables[0].restitution, 0.5);
+  ASSERT_EQ(rods.size(), 2u);
+  EXPECT_FALSE(rods[0].anchored());
+  EXPECT_DOUBLE_EQ(rods[0].length, 3.0);  // the distance at load time
+  EXPECT_TRUE(cables[1].anchored());
+  EXPECT_DOUBLE_EQ(cables[1].max_length, 2.0);
+  EXPECT_TRUE(rods[1].anchored());
+  EXPECT_DOUBLE_EQ(rods[1].length, 1.5);
 }
 
 TEST(SceneLoaderTest, BadCollidersAndCollisionsNameTheKey) {

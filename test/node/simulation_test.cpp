@@ -194,8 +194,9 @@ TEST(SimulationTest, LinksAreAddedAndRemovedById) {
   spring.stiffness = 10.0;
   const auto id = sim.addLink(spring);
   ASSERT_TRUE(id.isOk()) << id.message();
-  ASSERT_EQ(sim.world().generators().springs.size(), 1u);
-  EXPECT_DOUBLE_EQ(sim.world().generators().springs[0].rest_length, 1.0);  // current distance
+  ASSERT_EQ(sim.world().generators().of<engine::Spring>().size(), 1u);
+  EXPECT_DOUBLE_EQ(sim.world().generators().of<engine::Spring>()[0].rest_length,
+                   1.0);  // current distance
 
   LinkRequest anchored;
   anchored.type = LinkType::kBungee;
@@ -204,7 +205,9 @@ TEST(SimulationTest, LinksAreAddedAndRemovedById) {
   anchored.stiffness = 5.0;
   anchored.rest_length = 0.5;
   ASSERT_TRUE(sim.addLink(anchored).isOk());
-  EXPECT_DOUBLE_EQ(sim.world().generators().anchored_bungees[0].rest_length, 0.5);
+  const engine::Spring& bungee = sim.world().generators().of<engine::Spring>()[1];
+  EXPECT_TRUE(bungee.anchored() && bungee.pull_only);
+  EXPECT_DOUBLE_EQ(bungee.rest_length, 0.5);
 
   LinkRequest bad = spring;
   bad.stiffness = -1.0;
@@ -264,8 +267,8 @@ TEST(SimulationTest, CablesAndRodsAreLinksToo) {
   rod.b = byName("post");
   const auto rod_id = sim.addLink(rod);
   ASSERT_TRUE(rod_id.isOk()) << rod_id.message();
-  ASSERT_EQ(sim.world().links().rods.size(), 1u);
-  EXPECT_DOUBLE_EQ(sim.world().links().rods[0].length, 1.0);
+  ASSERT_EQ(sim.world().links().of<engine::Rod>().size(), 1u);
+  EXPECT_DOUBLE_EQ(sim.world().links().of<engine::Rod>()[0].length, 1.0);
   LinkRequest cable;
   cable.type = LinkType::kCable;
   cable.a = byName("ball");
@@ -274,7 +277,9 @@ TEST(SimulationTest, CablesAndRodsAreLinksToo) {
   cable.restitution = 0.2;
   const auto cable_id = sim.addLink(cable);
   ASSERT_TRUE(cable_id.isOk()) << cable_id.message();
-  EXPECT_DOUBLE_EQ(sim.world().links().anchored_cables[0].max_length, 2.5);
+  ASSERT_EQ(sim.world().links().of<engine::Cable>().size(), 1u);
+  EXPECT_TRUE(sim.world().links().of<engine::Cable>()[0].anchored());
+  EXPECT_DOUBLE_EQ(sim.world().links().of<engine::Cable>()[0].max_length, 2.5);
   cable.restitution = 3.0;
   EXPECT_FALSE(sim.addLink(cable).isOk());
   EXPECT_TRUE(sim.removeLink(*rod_id));
@@ -292,15 +297,14 @@ TEST(SimulationTest, ResetRestoresContactsAndRepeatsBitForBit) {
   engine::CollisionSettings settings;
   settings.particle_collisions = true;
   ASSERT_TRUE(scene.setCollisionSettings(settings));
-  ASSERT_TRUE(scene.addPlane(engine::PlaneCollider{}).isOk());
+  ASSERT_TRUE(scene.addCollider(engine::PlaneCollider{}).isOk());
   std::vector<ParticleId> ids;
   for (int i = 0; i < 27; ++i) {
     ParticleSpec spec;
     spec.position = Vec3(0.21 * (i % 3), 0.21 * ((i / 3) % 3), 0.3 + 0.21 * (i / 9));
     ids.push_back(*scene.addParticle(spec));
   }
-  ASSERT_TRUE(
-      scene.addAnchoredCable(engine::AnchoredCable{ids[26], Vec3(0, 0, 2), 1.5, 0.0}).isOk());
+  ASSERT_TRUE(scene.addLink(engine::Cable::anchoredAt(ids[26], Vec3(0, 0, 2), 1.5, 0.0)).isOk());
   Simulation sim(scene, SimulationLimits{});
   ASSERT_TRUE(sim.stepMany(60));
   const auto first = sim.world().stateHash();

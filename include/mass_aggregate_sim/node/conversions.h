@@ -5,8 +5,9 @@
 
 #include "mass_aggregate_sim/ParticleArray.h"
 #include "mass_aggregate_sim/ParticleSpec.h"
-#include "mass_aggregate_sim/engine/types.h"
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/core/types.h"
+#include "mass_aggregate_sim/engine/world/world.h"
+#include "mass_aggregate_sim/node/snapshot.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -17,7 +18,7 @@ engine::Vec3 fromMsg(const geometry_msgs::Point& p);
 engine::Vec3 fromMsg(const geometry_msgs::Vector3& v);
 
 // Every particle of the world; the header's stamp and frame are left for the caller.
-void fillParticleArray(const engine::World& world, ParticleArray& msg);
+void fillParticleArray(const WorldSnapshot& world, ParticleArray& msg);
 
 // A spawn request's particle as an engine spec (position and velocity as given, no frame change).
 // Refuses a mass that is not finite and > 0 (unless fixed); radius 0 means default_radius and

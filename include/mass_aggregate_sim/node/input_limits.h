@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <string>
 
-#include "mass_aggregate_sim/engine/particle_store.h"
-#include "mass_aggregate_sim/engine/status.h"
-#include "mass_aggregate_sim/engine/types.h"
+#include "mass_aggregate_sim/engine/core/particle_store.h"
+#include "mass_aggregate_sim/engine/core/status.h"
+#include "mass_aggregate_sim/engine/core/types.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -42,6 +42,12 @@ engine::Status checkParticleName(const std::string& name, const std::string& wor
 // Everything about a particle the engine does not check itself: the bounds above, mass in
 // [kMinMass, kMaxMass] unless immovable, and the name (when not empty).
 engine::Status checkParticleSpec(const engine::ParticleSpec& spec, const std::string& world_frame);
+
+// A piece of a request (a name, a frame, a type) as a refusal quotes it: in single quotes, cut to
+// its first kMaxQuoted characters with the total length after them when longer, so a 100 kB name
+// does not come back in the answer.
+constexpr std::size_t kMaxQuoted = 100;
+std::string quoteInput(const std::string& text);
 
 // Upper bounds of the count parameters themselves (~max_particles, ...).
 constexpr int kMaxParticlesLimit = 1000000;

@@ -7,7 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
+#include "mass_aggregate_sim/node/snapshot.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -21,16 +22,19 @@ class MarkerBuilder {
  public:
   MarkerBuilder(std::string frame_id, double tension_scale);
 
+  // From a snapshot (the publishing thread) and the world's colliders.
+  visualization_msgs::MarkerArray build(const WorldSnapshot& world,
+                                        const engine::Colliders& colliders, const ros::Time& stamp);
   visualization_msgs::MarkerArray build(const engine::World& world, const ros::Time& stamp);
   // The next array starts with DELETEALL (after a reset or a new scene).
   void restart();
 
  private:
-  void addParticles(const engine::World& world, const ros::Time& stamp,
+  void addParticles(const WorldSnapshot& world, const ros::Time& stamp,
                     visualization_msgs::MarkerArray& out) const;
-  void addLinks(const engine::World& world, const ros::Time& stamp,
+  void addLinks(const WorldSnapshot& world, const ros::Time& stamp,
                 visualization_msgs::MarkerArray& out) const;
-  void addColliders(const engine::World& world, const ros::Time& stamp,
+  void addColliders(const engine::Colliders& colliders, const ros::Time& stamp,
                     visualization_msgs::MarkerArray& out) const;
   visualization_msgs::Marker makeMarker(const std::string& ns, int id, int type,
                                         const ros::Time& stamp) const;

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "mass_aggregate_sim/engine/status.h"
+#include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/node/scene_loader.h"
 #include "mass_aggregate_sim/node/simulation.h"
 
@@ -20,6 +20,9 @@ struct NodeParams {
   bool publish_tf = true;
   double default_radius = 0.1;  // m
   double tension_scale = 10.0;  // N, link colour saturation
+  // The ~step service's limit: it answers when its steps are done, so it is for short runs;
+  // longer ones go through the ~step action (up to limits.max_steps_per_request).
+  std::uint32_t max_service_steps = 1000;
   SimulationLimits limits;
 };
 

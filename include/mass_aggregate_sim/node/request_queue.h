@@ -16,6 +16,8 @@ class RequestQueue {
  public:
   // Returns false when the owner stopped before (or instead of) running the job.
   bool run(std::function<void()> job);
+  // Queues the job without waiting for it; false when the owner has stopped.
+  bool post(std::function<void()> job);
   // Runs every job queued so far, in arrival order; called by the owner only.
   void drain();
   // Cancels what is queued and refuses whatever comes later.

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
 namespace node {

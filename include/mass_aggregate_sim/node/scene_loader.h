@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -25,6 +25,8 @@ struct SceneOverrides {
 struct LoadedScene {
   std::string name;
   std::string description;
+  // Where it came from, for the startup log line, e.g. "the parameter /mass_aggregate_sim/scene".
+  std::string source;
   double rate = 60.0;  // Hz
   engine::World world;
 };

@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/world.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 #include "mass_aggregate_sim/node/links.h"
+#include "mass_aggregate_sim/node/settings.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -60,8 +61,13 @@ class Simulation {
   void step();
   // n steps at once (the node allows it only while paused).
   engine::Status stepMany(std::uint32_t n);
-  // Back to the loaded scene; sustained forces are dropped.
+  // Back to the loaded scene; sustained forces are dropped. Settings changed by configure() stay.
   void reset();
+
+  PhysicsSettings settings() const;
+  // New physics settings, from now on and across reset(). A divergence policy of reset keeps a
+  // snapshot of the world as it is now (and at each reset()) to go back to.
+  engine::Status configure(const PhysicsSettings& settings);
 
   engine::Result<engine::ParticleId> resolve(const ParticleRef& ref) const;
   std::size_t sustainedForceCount() const { return sustained_.size(); }
@@ -77,6 +83,7 @@ class Simulation {
   engine::World world_;
   SimulationLimits limits_;
   std::vector<SustainedForce> sustained_;
+  std::optional<PhysicsSettings> configured_;
 };
 
 }  // namespace node

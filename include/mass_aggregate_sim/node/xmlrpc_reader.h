@@ -5,9 +5,10 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
-#include "mass_aggregate_sim/engine/status.h"
-#include "mass_aggregate_sim/engine/types.h"
+#include "mass_aggregate_sim/engine/core/status.h"
+#include "mass_aggregate_sim/engine/core/types.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -37,6 +38,8 @@ bool has(XmlRpc::XmlRpcValue& s, const std::string& member);
 // Refuses members other than `allowed` (catches misspelt keys).
 void checkKeys(XmlRpc::XmlRpcValue& s, const std::string& key,
                std::initializer_list<const char*> allowed);
+void checkKeys(XmlRpc::XmlRpcValue& s, const std::string& key,
+               const std::vector<std::string>& allowed);
 void requireStruct(const XmlRpc::XmlRpcValue& value, const std::string& key);
 void requireArray(const XmlRpc::XmlRpcValue& value, const std::string& key);
 

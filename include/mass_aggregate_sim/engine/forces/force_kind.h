@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/core/kind_list.h"
+#include "mass_aggregate_sim/engine/core/particle_id.h"
+#include "mass_aggregate_sim/engine/core/status.h"
+#include "mass_aggregate_sim/engine/core/types.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// Names one force generator or link; never reused within a world (they share one id space).
+using GeneratorId = std::uint32_t;
+
+class ParticleStore;
+struct ForceEvaluation;
+class ImplicitSystem;
+struct StiffnessTerm;
+
+// What the engine knows of a force generator kind K: ForceKind<K>, specialised in K's own header
+// and defined in its own source file (forces/<kind>.cpp). Every stage that handles force
+// generators visits ForceKinds (force_generators.h) through these functions, so a kind that lacks
+// one does not compile:
+//   kName                     the kind's name in messages
+//   validate(K&, particles)   refuses bad values (Status says why); may normalise the kind
+//   refersTo(k, id)           whether the generator acts on particle id (removed with it)
+//   accumulate(ks, e, force, elastic)
+//                             adds each generator's force at e.x, e.v to `force`; with `elastic`
+//                             also adds their elastic energy at e.x to it
+//   energy(ks, e)             their elastic energy at e.x
+//   linearise(ks, system)     their K = df/dx and D = df/dv for implicit Euler
+//   stiffness(ks, particles, terms)
+//                             their springs for the stability analysis
+//   kUncountedWork            does work the energy guard cannot count (its energy is not a
+//                             potential): a world with one is not guarded
+template <typename Kind>
+struct ForceKind;
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

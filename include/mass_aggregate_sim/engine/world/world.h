@@ -1,0 +1,259 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/collision/colliders.h"
+#include "mass_aggregate_sim/engine/collision/collision_settings.h"
+#include "mass_aggregate_sim/engine/collision/particle_materials.h"
+#include "mass_aggregate_sim/engine/collision/queries.h"
+#include "mass_aggregate_sim/engine/core/owned.h"
+#include "mass_aggregate_sim/engine/core/particle_store.h"
+#include "mass_aggregate_sim/engine/core/status.h"
+#include "mass_aggregate_sim/engine/core/types.h"
+#include "mass_aggregate_sim/engine/forces/force_generators.h"
+#include "mass_aggregate_sim/engine/solver/links.h"
+#include "mass_aggregate_sim/engine/world/stability.h"
+#include "mass_aggregate_sim/engine/world/world_config.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// A divergence found after a step: a non-finite position or velocity (the first such particle), or
+// energy growing beyond the guard's bound (the particle with the most kinetic energy).
+struct DivergenceEvent {
+  std::uint64_t step = 0;
+  Real time = 0.0;
+  ParticleId particle;
+  std::string what;
+};
+
+// The force a cable or rod applied in the last substep, from its constraint's total impulse J over
+// that substep of length h: tension = J / h (N). The impulse acts on the link's first particle
+// (a) along the unit vector towards its other end, so tension > 0 pulls the ends together (a taut
+// cable, a stretched rod), tension < 0 pushes them apart (only a rod, in compression), and 0 means
+// the link did not act (a slack cable).
+struct LinkTension {
+  GeneratorId id = 0;
+  Real tension = 0.0;
+};
+
+// A config validateConfig() refuses, given to World's constructor.
+class InvalidConfig : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The state the world keeps about its integrator, its contacts and its guards between steps.
+struct IntegratorState;
+struct ContactWorkspace;
+struct GuardState;
+// What the world derives from its state to save work (never state: a copy derives it again).
+struct StepCaches;
+class StepContext;
+
+// The particle world: particles, force generators, links, colliders and a fixed-step integrator.
+// Time is passed in (step, advance), never read from a clock. All mutation goes through this
+// class and is validated here (each kind validates itself); the same calls in the same order give
+// bit-identical states. A copy is a full, independent world that steps on exactly as the original
+// would.
+class World {
+ public:
+  // The default config (always valid).
+  World();
+  // Throws InvalidConfig, with validateConfig's message, when the config is invalid: a world
+  // never runs on settings other than those it was given. create() is the non-throwing form.
+  explicit World(const WorldConfig& config);
+  static Result<World> create(const WorldConfig& config);
+  ~World();
+  World(const World& other);
+  World& operator=(const World& other);
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  const WorldConfig& config() const { return config_; }
+  // Refuses an invalid config and keeps the old one.
+  Status setConfig(const WorldConfig& config);
+
+  // --- particles ---
+  Result<ParticleId> addParticle(const ParticleSpec& spec);
+  // Also removes every force generator and link that refers to the particle.
+  Status removeParticle(ParticleId id);
+  Status setPosition(ParticleId id, const Vec3& position);
+  Status setVelocity(ParticleId id, const Vec3& velocity);
+  // dv = J / m; refused for an immovable particle.
+  Status applyImpulse(ParticleId id, const Vec3& impulse);
+  // Adds to the external force the particle feels during the next step only.
+  Status addForce(ParticleId id, const Vec3& force);
+  const ParticleStore& particles() const { return particles_; }
+
+  // --- force generators (ForceKinds: Drag, Spring, Buoyancy, StiffSpring) and links (LinkKinds:
+  // Cable, Rod); one id space. Each is validated by its kind (ForceKind<K>::validate,
+  // LinkKind<K>::validate): live distinct particles, finite values in range. ---
+  template <typename Kind>
+  Result<GeneratorId> addGenerator(Kind generator);
+  template <typename Kind>
+  Result<GeneratorId> addLink(Kind link);
+  // Removes a force generator or a link.
+  Status removeGenerator(GeneratorId id);
+  const ForceGenerators& generators() const { return generators_; }
+  const Links& links() const { return links_; }
+  // Every live link's tension in the last substep (LinkTension), sorted by id. A link added since
+  // the last step, or every link after a particle was removed (the resolver forgets its warm
+  // start then), reads 0 until the next step. Reads what the resolver kept for warm starting:
+  // no work during the step, O(links log links) here.
+  std::vector<LinkTension> linkTensions() const;
+
+  // --- static colliders (ShapeKinds); particles collide with them as spheres of their radius.
+  // Each is validated and normalised by its kind (ShapeKind<K>::validate). ---
+  template <typename Shape>
+  Result<ColliderId> addCollider(Shape shape);
+  Status removeCollider(ColliderId id);
+  const Colliders& colliders() const { return colliders_; }
+
+  // --- contacts ---
+  Status setCollisionSettings(const CollisionSettings& settings);
+  const CollisionSettings& collisionSettings() const { return collision_settings_; }
+  // A particle's own material for particle-particle contacts; a pair combines the two (mean
+  // restitution, geometric mean friction). Particles without one use the collision settings'.
+  Status setParticleMaterial(ParticleId id, const Material& material);
+  // Diagnostics of the contact phase of the last substep (dropped: summed over the last step).
+  const ContactStats& lastContactStats() const { return last_contact_stats_; }
+
+  // --- queries ---
+  std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, Real max_distance) const;
+  // Particles whose sphere overlaps the given sphere / axis-aligned box.
+  std::vector<ParticleId> overlapSphere(const Vec3& center, Real radius) const;
+  std::vector<ParticleId> overlapBox(const Vec3& center, const Vec3& half_extents) const;
+
+  // Removes all particles, generators, links and colliders; time goes back to zero. Settings stay.
+  void clear();
+
+  // --- time ---
+  // One fixed step of dt, split into substeps: its stages are in world/step.cpp.
+  void step();
+  // Feeds a variable frame time (clamped to [0, max_frame_time]) into the accumulator and takes as
+  // many fixed steps as fit. Returns how many it took; the remainder waits for the next call.
+  int advance(Real frame_time);
+  // Fraction of a step left in the accumulator, for interpolating what is shown.
+  Real accumulatorAlpha() const { return accumulator_ / config_.dt; }
+  Real time() const { return time_origin_ + static_cast<Real>(steps_since_origin_) * config_.dt; }
+  std::uint64_t stepCount() const { return step_count_; }
+
+  // --- measurements ---
+  Real kineticEnergy() const;
+  // -sum m g.x over movable particles (zero at the origin).
+  Real gravitationalEnergy() const;
+  Real springEnergy() const;
+  Real totalEnergy() const { return kineticEnergy() + gravitationalEnergy() + springEnergy(); }
+  Vec3 linearMomentum() const;
+  // Hash of the full dynamic state (ids, positions, velocities, integrator history, the impulses
+  // contacts carry into the next substep, time): equal hashes mean bit-identical states.
+  std::uint64_t stateHash() const;
+
+  // Divergence: a non-finite position or velocity, or the energy guard, after a step. Detected
+  // in the step that produced it; the latest event is kept and the count grows.
+  const std::optional<DivergenceEvent>& lastDivergence() const;
+  std::uint64_t divergenceCount() const;
+
+  // Acceleration each particle had in the last substep (the average over RK4's stages).
+  ConstVec3Map lastAccelerations() const;
+
+  // --- stability guard (stability.h, WorldConfig::auto_substep, divergence_policy) ---
+  // The stiffest spring against the integrator's limit at the current dt and substeps; kept up to
+  // date with the scene. !stable is the warning: it names the spring, its omega*h and stable dt.
+  const StabilityReport& stabilityReport() const;
+  // Substeps the last step took (auto_substep can raise config().substeps).
+  int substepsUsed() const { return substeps_used_; }
+  // True after a divergence under DivergencePolicy::kPause (or kReset without a snapshot): step()
+  // and advance() do nothing until resume().
+  bool paused() const { return paused_; }
+  void resume() { paused_ = false; }
+  // Keeps a copy of the whole world as it is now, for DivergencePolicy::kReset.
+  void setResetSnapshot();
+  void clearResetSnapshot() { reset_snapshot_.reset(); }
+  bool hasResetSnapshot() const { return reset_snapshot_ != nullptr; }
+
+ private:
+  // A new id for a generator or link; validated kinds only.
+  GeneratorId nextGeneratorId() { return next_generator_id_++; }
+  Result<ColliderId> nextColliderId();
+  // The forces, the springs' layout or the state changed: every force cache and the energy
+  // guard's reference are stale (position Verlet's history is kept per particle).
+  void stateChanged();
+
+  // A step (world/step.cpp): the context its stages share, built once, and what ends it (time,
+  // the guards and the divergence policy).
+  StepContext beginStep();
+  void finalise(StepContext& ctx);
+  void applyDivergencePolicy();
+  bool contactsActive() const;
+
+  WorldConfig config_;
+  ParticleStore particles_;
+  ForceGenerators generators_;
+  Links links_;
+  GeneratorId next_generator_id_ = 1;
+  // Changes whenever a generator or link is added or removed (the force stage's springs layout).
+  std::uint64_t generators_version_ = 0;
+  Colliders colliders_;
+  ColliderId next_collider_id_ = 1;
+  CollisionSettings collision_settings_;
+  ParticleMaterials materials_;
+
+  Real time_origin_ = 0.0;
+  std::uint64_t steps_since_origin_ = 0;
+  std::uint64_t step_count_ = 0;
+  Real accumulator_ = 0.0;
+  bool has_external_force_ = false;
+  int substeps_used_ = 1;
+  bool paused_ = false;
+  std::shared_ptr<const World> reset_snapshot_;
+  ContactStats last_contact_stats_;
+  std::size_t dropped_this_step_ = 0;
+
+  Owned<IntegratorState> integration_;
+  Owned<ContactWorkspace> contacts_;
+  Owned<GuardState> guard_;
+  Derived<StepCaches> caches_;
+};
+
+template <typename Kind>
+Result<GeneratorId> World::addGenerator(Kind generator) {
+  const Status valid = ForceKind<Kind>::validate(generator, particles_);
+  if (!valid) return valid;
+  generator.id = nextGeneratorId();
+  generators_.of<Kind>().push_back(generator);
+  ++generators_version_;
+  stateChanged();
+  return generator.id;
+}
+
+template <typename Kind>
+Result<GeneratorId> World::addLink(Kind link) {
+  const Status valid = LinkKind<Kind>::validate(link, particles_);
+  if (!valid) return valid;
+  link.id = nextGeneratorId();
+  links_.of<Kind>().push_back(link);
+  ++generators_version_;
+  stateChanged();
+  return link.id;
+}
+
+template <typename Shape>
+Result<ColliderId> World::addCollider(Shape shape) {
+  const Status valid = ShapeKind<Shape>::validate(shape);
+  if (!valid) return valid;
+  const Result<ColliderId> id = nextColliderId();
+  if (!id) return id;
+  shape.id = *id;
+  colliders_.of<Shape>().push_back(shape);
+  return id;
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,77 @@
+#include "engine/integrators/semi_implicit_pass.h"
+
+#include "engine/core/simd.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+// Four particles (three Real4) per iteration, the rest one component at a time with the same
+// operations in the same order, so every particle gets the same bits either way.
+template <bool kHasForces, bool kEnergies>
+inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Real* __restrict a,
+                                                Real* __restrict x, Real* __restrict v,
+                                                EnergyAccumulator& energies) {
+  using simd::load;
+  using simd::Real4;
+  using simd::store;
+  const Real* const g = in.gravity;
+  const Real4 h = simd::broadcast(in.h);
+  const Real4 gravity[3] = {simd::pattern0(g), simd::pattern1(g), simd::pattern2(g)};
+  const auto spread = [](const Real4 s, const int b) {
+    return b == 0 ? simd::spread0(s) : b == 1 ? simd::spread1(s) : simd::spread2(s);
+  };
+  std::size_t i = 0;
+  for (; i + 4 <= in.count; i += 4) {
+    const Real4 inverse_mass = load(in.inverse_mass + i);
+    const Real4 mobility = load(in.mobility + i);
+    const Real4 damping = load(in.damping_factor + i);
+    const Real4 mass = kEnergies ? load(in.mass + i) : Real4{};
+    for (int b = 0; b < 3; ++b) {
+      const std::size_t k = 3 * i + 4 * static_cast<std::size_t>(b);
+      const Real4 uniform = spread(mobility, b) * (gravity[b] + load(in.own_acceleration + k));
+      const Real4 acceleration =
+          kHasForces ? load(a + k) * spread(inverse_mass, b) + uniform : uniform;
+      store(a + k, acceleration);
+      // v' = (v + a h) d^h,  x' = x + v' h
+      const Real4 velocity = (load(v + k) + acceleration * h) * spread(damping, b);
+      store(v + k, velocity);
+      const Real4 position = load(x + k) + velocity * h;
+      store(x + k, position);
+      if constexpr (kEnergies) energies.addGroup(b, spread(mass, b), position, velocity);
+    }
+  }
+  for (; i < in.count; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::size_t k = 3 * i + c;
+      const Real uniform = in.mobility[i] * (g[c] + in.own_acceleration[k]);
+      const Real acceleration = kHasForces ? a[k] * in.inverse_mass[i] + uniform : uniform;
+      a[k] = acceleration;
+      const Real velocity = (v[k] + acceleration * in.h) * in.damping_factor[i];
+      v[k] = velocity;
+      x[k] += velocity * in.h;
+    }
+    if constexpr (kEnergies) energies.addParticle(in.mass[i], x + 3 * i, v + 3 * i);
+  }
+}
+
+MAS_SIMD_CLONES void dispatch(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
+                              Real* v, EnergyAccumulator* energies) {
+  EnergyAccumulator sums;  // a local, so the sums stay in registers
+  if (has_forces) {
+    energies ? pass<true, true>(in, a, x, v, sums) : pass<true, false>(in, a, x, v, sums);
+  } else {
+    energies ? pass<false, true>(in, a, x, v, sums) : pass<false, false>(in, a, x, v, sums);
+  }
+  if (energies) *energies = sums;
+}
+
+}  // namespace
+
+void semiImplicitEulerPass(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
+                           Real* v, EnergyAccumulator* energies) {
+  dispatch(in, has_forces, a, x, v, energies);
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,31 @@
+#pragma once
+// The semi-implicit Euler update of all particles in one pass (World::integrateSemiImplicitEuler).
+
+#include <cstddef>
+
+#include "engine/world/energy_accumulator.h"
+#include "mass_aggregate_sim/engine/core/types.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// Per-particle inputs, SoA: xyz of particle i at 3i, scalars at i.
+struct SemiImplicitInputs {
+  std::size_t count = 0;
+  Real h = 0.0;
+  const Real* gravity = nullptr;  // 3 values
+  const Real* inverse_mass = nullptr;
+  const Real* mobility = nullptr;          // 1 movable, 0 immovable
+  const Real* own_acceleration = nullptr;  // xyz
+  const Real* damping_factor = nullptr;    // d^h
+  const Real* mass = nullptr;              // read only with `energies`
+};
+
+// a = F/m + mobility (g + a_own) (F read from `a` when has_forces, else 0), stored in `a`;
+// v' = (v + a h) d^h; x' = x + v' h. With `energies`, adds the new state to it (the order of
+// accumulateParticleEnergies).
+void semiImplicitEulerPass(const SemiImplicitInputs& in, bool has_forces, Real* a, Real* x, Real* v,
+                           EnergyAccumulator* energies);
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

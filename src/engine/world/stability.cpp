@@ -1,0 +1,195 @@
+#include "mass_aggregate_sim/engine/world/stability.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "engine/forces/force_evaluation.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+constexpr int kMaxSubsteps = 1000;
+
+constexpr std::size_t kAnchor = StiffnessTerm::kAnchorEnd;
+
+}  // namespace
+
+const char* divergencePolicyName(const DivergencePolicy policy) {
+  switch (policy) {
+    case DivergencePolicy::kContinue:
+      return "continue";
+    case DivergencePolicy::kPause:
+      return "pause";
+    case DivergencePolicy::kReset:
+      return "reset";
+  }
+  return "unknown";
+}
+
+Real stabilityLimit(const Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kExplicitEuler:
+      return 0.0;
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kPositionVerlet:
+    case Integrator::kVelocityVerlet:
+      return 2.0;
+    case Integrator::kRk4:
+      return 2.0 * std::sqrt(2.0);
+    case Integrator::kImplicitEuler:
+      return kInfinity;
+  }
+  return 0.0;
+}
+
+Real stabilityLimit(const Integrator integrator, const Real damping, const Real h) {
+  if (integrator != Integrator::kExplicitEuler) return stabilityLimit(integrator);
+  if (damping >= 1.0 || h <= 0.0) return 0.0;
+  // sqrt(d^-h - 1), with expm1 for accuracy when h ln d is small
+  return std::sqrt(std::expm1(-h * std::log(damping)));
+}
+
+Real largestStableSubstep(const Integrator integrator, const Real omega, const Real damping,
+                          const Real fraction) {
+  if (omega <= 0.0) return kInfinity;
+  if (integrator != Integrator::kExplicitEuler)
+    return fraction * stabilityLimit(integrator) / omega;
+  if (damping >= 1.0) return 0.0;
+  if (damping <= 0.0) return kInfinity;
+  // omega h - f sqrt(d^-h - 1) < 0 exactly on (0, h*): bisect for h*, starting from the small-h
+  // estimate h* ~ -f^2 ln(d) / omega^2 and widening until the bracket holds.
+  const auto stable = [&](const Real h) {
+    return omega * h < fraction * stabilityLimit(integrator, damping, h);
+  };
+  Real low = 0.0;
+  Real high = -fraction * fraction * std::log(damping) / (omega * omega);
+  while (stable(high)) {
+    low = high;
+    high *= 2.0;
+    if (high > 1e6) return kInfinity;
+  }
+  for (int i = 0; i < 100; ++i) {
+    const Real mid = 0.5 * (low + high);
+    (stable(mid) ? low : high) = mid;
+  }
+  return low;
+}
+
+Real energySwing(const Integrator integrator, const Real omega_h) {
+  // Explicit Euler has no bounded undamped orbit: every rise of its energy is growth.
+  if (integrator == Integrator::kExplicitEuler) return 1.0;
+  if (!(omega_h < stabilityLimit(integrator))) return kInfinity;
+  const Real w2 = omega_h * omega_h;
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+      return (1.0 + 0.5 * omega_h) / (1.0 - 0.5 * omega_h);
+    case Integrator::kVelocityVerlet:
+      return 1.0 / (1.0 - 0.25 * w2);
+    case Integrator::kPositionVerlet: {
+      const Real b = 2.0 + 0.75 * w2;
+      const Real r = 0.25 * w2 * std::sqrt(9.0 + 4.0 * w2);
+      return (b + r) / (b - r);
+    }
+    case Integrator::kExplicitEuler:
+    case Integrator::kRk4:
+    case Integrator::kImplicitEuler:
+      return 1.0;
+  }
+  return kInfinity;
+}
+
+Real guardSwing(const Integrator integrator, const Real omega_h) {
+  return energySwing(integrator, std::min(omega_h, 0.999 * stabilityLimit(integrator)));
+}
+
+StabilityReport analyseStability(const ForceGenerators& generators, const ParticleStore& particles,
+                                 const Integrator integrator, const Real dt, const int substeps) {
+  StabilityReport report;
+  report.substeps_used = substeps;
+  report.limit = stabilityLimit(integrator);
+  const std::size_t n = particles.size();
+  const auto inverse_mass = particles.inverseMasses();
+  const auto damping = particles.dampings();
+
+  const std::vector<StiffnessTerm> terms = stiffnessTerms(generators, particles);
+
+  // s_i = sum of sqrt(k) over the springs at particle i
+  std::vector<Real> root_stiffness_sum(n, 0.0);
+  for (const StiffnessTerm& t : terms) {
+    const Real root = std::sqrt(t.stiffness);
+    root_stiffness_sum[t.a] += root;
+    if (t.b != kAnchor) root_stiffness_sum[t.b] += root;
+  }
+
+  const Real h = dt / static_cast<Real>(substeps);
+  Real worst_ratio = -1.0;  // omega h relative to the limit, or h over the stable substep
+  Real worst_stable_substep = kInfinity;
+  Real worst_omega = 0.0;
+  Real worst_damping = 1.0;
+  for (const StiffnessTerm& t : terms) {
+    if (t.stiffness <= 0.0) continue;
+    const Real inverse_a = inverse_mass[t.a];
+    const Real inverse_b = t.b == kAnchor ? 0.0 : inverse_mass[t.b];
+    // 1/mu = 1/m_a + 1/m_b
+    const Real inverse_mu = inverse_a + inverse_b;
+    if (inverse_mu <= 0.0) continue;  // both ends immovable
+    const Real omega = std::sqrt(t.stiffness * inverse_mu);
+    Real coupled_square = root_stiffness_sum[t.a] * inverse_a;
+    if (t.b != kAnchor) coupled_square += root_stiffness_sum[t.b] * inverse_b;
+    const Real coupled_omega = std::sqrt(std::sqrt(t.stiffness) * coupled_square);
+    // The weaker particle damping of the two movable ends governs explicit Euler.
+    Real weakest_damping = inverse_a > 0.0 ? damping[t.a] : 0.0;
+    if (t.b != kAnchor && inverse_b > 0.0)
+      weakest_damping = std::max(weakest_damping, damping[t.b]);
+    const Real stable_substep = largestStableSubstep(integrator, coupled_omega, weakest_damping);
+    const Real ratio = stable_substep > 0.0 ? h / stable_substep : kInfinity;
+    if (ratio > worst_ratio) {
+      worst_ratio = ratio;
+      worst_stable_substep = stable_substep;
+      report.generator = t.id;
+      report.omega = omega;
+      report.coupled_omega = coupled_omega;
+      report.omega_h = coupled_omega * h;
+      report.limit = stabilityLimit(integrator, weakest_damping, h);
+      worst_omega = coupled_omega;
+      worst_damping = weakest_damping;
+    }
+  }
+  if (report.generator == 0) return report;
+
+  // the fewest s with dt / s < h* (0: none up to kMaxSubsteps)
+  const auto fewest_substeps = [dt](const Real largest_substep) {
+    if (!(largest_substep > 0.0)) return 0;  // also NaN, from an omega that overflowed
+    if (std::isinf(largest_substep)) return 1;
+    const Real needed = std::floor(dt / largest_substep) + 1.0;
+    return needed <= kMaxSubsteps ? static_cast<int>(needed) : 0;
+  };
+  report.substeps_with_margin = fewest_substeps(
+      largestStableSubstep(integrator, worst_omega, worst_damping, kAutoSubstepMargin));
+
+  report.stable = worst_ratio < 1.0;
+  report.stable_dt = worst_stable_substep * static_cast<Real>(substeps);
+  report.substeps_needed = fewest_substeps(worst_stable_substep);
+  if (!report.stable) {
+    char text[320];
+    std::snprintf(
+        text, sizeof(text),
+        "spring %u is unstable with %s: omega*h = %.4g (omega = %.4g rad/s, coupled "
+        "%.4g rad/s, h = %.4g s) exceeds the limit %.4g; stable for dt < %.4g s with "
+        "%d substeps%s",
+        static_cast<unsigned>(report.generator), integratorName(integrator), report.omega_h,
+        report.omega, report.coupled_omega, h, report.limit, report.stable_dt, substeps,
+        report.substeps_needed > 0
+            ? (", or with " + std::to_string(report.substeps_needed) + " substeps").c_str()
+            : ", and no substep count up to 1000 makes it stable");
+    report.message = text;
+  }
+  return report;
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,145 @@
+#include "mass_aggregate_sim/node/diagnostics.h"
+
+#include <cstdio>
+#include <tuple>
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using diagnostic_msgs::DiagnosticStatus;
+using diagnostic_updater::DiagnosticStatusWrapper;
+
+std::string format(const char* pattern, const double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+void addTiming(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  out.add("target rate (Hz)", in.rate);
+  out.add("measured step rate (Hz)", in.step_rate);
+  out.add("real-time factor", in.real_time_factor);
+  out.add("step cost mean (ms)", 1e3 * in.step_cost_mean);
+  out.add("step cost max (ms)", 1e3 * in.step_cost_max);
+  out.add("overruns in the period", in.overruns);
+  out.add("overruns since start", in.overruns_total);
+  out.add("publish cost (ms)", 1e3 * in.publish_cost);
+}
+
+}  // namespace
+
+void stepRateStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  addTiming(in, out);
+  if (in.stepping_run) {
+    out.summary(DiagnosticStatus::OK, "a ~step run is under way (as fast as it can)");
+    return;
+  }
+  if (in.paused) {
+    out.summary(DiagnosticStatus::OK, "paused");
+    return;
+  }
+  const double ratio = in.rate > 0.0 ? in.step_rate / in.rate : 0.0;
+  const std::string text = format("%.1f", in.step_rate) + " of " + format("%.1f", in.rate) +
+                           " steps per second (real-time factor " +
+                           format("%.2f", in.real_time_factor) + ")";
+  if (ratio >= 0.9) {
+    out.summary(DiagnosticStatus::OK, text);
+  } else if (ratio >= 0.5) {
+    out.summary(DiagnosticStatus::WARN, "below ~rate: " + text);
+  } else {
+    out.summary(DiagnosticStatus::ERROR, "far below ~rate: " + text);
+  }
+}
+
+void stepCostStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  addTiming(in, out);
+  const double period = in.rate > 0.0 ? 1.0 / in.rate : 0.0;
+  const double load = period > 0.0 ? in.step_cost_mean / period : 0.0;
+  out.add("step cost / period", load);
+  const std::string text = format("%.2f", 1e3 * in.step_cost_mean) + " ms per step of a " +
+                           format("%.2f", 1e3 * period) + " ms period";
+  if (load > 1.0) {
+    out.summary(DiagnosticStatus::ERROR, "a step costs more than its period: " + text);
+  } else if (load >= 0.8 || static_cast<double>(in.overruns) > 0.01 * in.ticks) {
+    out.summary(DiagnosticStatus::WARN, text + ", " + std::to_string(in.overruns) +
+                                            " overrun(s) in " + std::to_string(in.ticks) +
+                                            " ticks");
+  } else {
+    out.summary(DiagnosticStatus::OK, text);
+  }
+}
+
+void stabilityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  const engine::StabilityReport& s = in.stability;
+  out.add("divergence events", in.divergence_events);
+  out.add("last divergence", in.last_divergence);
+  out.add("stiffest spring", s.generator);
+  out.add("omega*h", s.omega_h);
+  out.add("integrator limit on omega*h", s.limit);
+  out.add("largest stable dt (s)", s.stable_dt);
+  out.add("substeps used", s.substeps_used);
+  out.add("substeps needed", s.substeps_needed);
+  if (in.divergence_events > 0) {
+    out.summary(DiagnosticStatus::ERROR, std::to_string(in.divergence_events) +
+                                             " divergence(s), last: " + in.last_divergence);
+  } else if (!s.stable) {
+    out.summary(DiagnosticStatus::WARN, s.message);
+  } else {
+    out.summary(DiagnosticStatus::OK, "no divergence; every spring within its limit");
+  }
+}
+
+void contactsStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  const engine::ContactStats& c = in.contacts;
+  out.add("contacts", c.contacts);
+  out.add("resolver iterations", c.iterations);
+  out.add("velocity iterations", c.velocity_iterations);
+  out.add("position iterations", c.position_iterations);
+  out.add("max_iterations per phase", in.max_iterations);
+  out.add("largest penetration left (m)", c.max_penetration);
+  out.add("largest closing velocity left (m/s)", c.max_closing_velocity);
+  out.add("dropped", c.dropped);
+  out.add("continuous hits", c.ccd_hits);
+  if (c.dropped > 0) {
+    out.summary(DiagnosticStatus::WARN,
+                std::to_string(c.dropped) + " contact(s) dropped in the last step (max_contacts)");
+  } else if (c.contacts > 0 && (c.velocity_iterations >= in.max_iterations ||
+                                c.position_iterations >= in.max_iterations)) {
+    out.summary(DiagnosticStatus::WARN, "the resolver used every allowed pass (max_iterations " +
+                                            std::to_string(in.max_iterations) +
+                                            "): contacts may be left unresolved");
+  } else {
+    out.summary(DiagnosticStatus::OK, std::to_string(c.contacts) + " contact(s), " +
+                                          std::to_string(c.iterations) + " iteration(s)");
+  }
+}
+
+void capacityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
+  out.add("particles", in.particles);
+  out.add("max_particles", in.max_particles);
+  out.add("links and force generators", in.links);
+  out.add("max_links", in.max_links);
+  out.add("sustained forces", in.sustained_forces);
+  out.add("max_sustained_forces", in.max_sustained_forces);
+  std::string full;
+  for (const auto& [name, count, limit] :
+       {std::tuple<const char*, std::size_t, std::size_t>{"particles", in.particles,
+                                                          in.max_particles},
+        {"links and force generators", in.links, in.max_links},
+        {"sustained forces", in.sustained_forces, in.max_sustained_forces}}) {
+    if (limit > 0 && 10 * count >= 9 * limit) {
+      if (!full.empty()) full += "; ";
+      full += std::string(name) + " " + std::to_string(count) + " of " + std::to_string(limit);
+    }
+  }
+  if (!full.empty()) {
+    out.summary(DiagnosticStatus::WARN, "at 90 % of the limit or more: " + full);
+  } else {
+    out.summary(DiagnosticStatus::OK, std::to_string(in.particles) + " particle(s), " +
+                                          std::to_string(in.links) + " link(s)");
+  }
+}
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

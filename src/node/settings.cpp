@@ -1,0 +1,197 @@
+#include "mass_aggregate_sim/node/settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <tuple>
+
+#include "mass_aggregate_sim/engine/integrators/integrator.h"
+#include "mass_aggregate_sim/node/input_limits.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::Real;
+using engine::Result;
+using engine::Status;
+
+constexpr double kMaxRate = 100000.0;  // Hz, as a scene's rate
+constexpr double kMaxPublishRate = 1000.0;
+
+std::string exact(const double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string readable(const double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+const char* boolText(const bool value) { return value ? "true" : "false"; }
+
+class Fnv {
+ public:
+  void add(const void* data, const std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash_ ^= bytes[i];
+      hash_ *= 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void add(const T& value) {
+    add(&value, sizeof value);
+  }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+}  // namespace
+
+std::optional<engine::DivergencePolicy> parseDivergencePolicy(const std::string& name) {
+  for (const auto policy : {engine::DivergencePolicy::kContinue, engine::DivergencePolicy::kPause,
+                            engine::DivergencePolicy::kReset}) {
+    if (name == engine::divergencePolicyName(policy)) return policy;
+  }
+  return std::nullopt;
+}
+
+LiveSettings liveSettingsOf(const PhysicsSettings& physics, const double publish_rate,
+                            const bool paused) {
+  LiveSettings s;
+  s.rate = 1.0 / physics.config.dt;
+  s.substeps = physics.config.substeps;
+  s.integrator = engine::integratorName(physics.config.integrator);
+  s.gravity = physics.config.gravity;
+  s.auto_substep = physics.config.auto_substep;
+  s.divergence_policy = engine::divergencePolicyName(physics.config.divergence_policy);
+  s.particle_collisions = physics.collisions.particle_collisions;
+  s.continuous = physics.collisions.continuous;
+  s.particle_restitution = physics.collisions.particle_restitution;
+  s.particle_friction = physics.collisions.particle_friction;
+  s.max_iterations = physics.collisions.max_iterations;
+  s.penetration_slop = physics.collisions.penetration_slop;
+  s.publish_rate = publish_rate;
+  s.paused = paused;
+  return s;
+}
+
+Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const PhysicsSettings& base) {
+  if (!(wanted.rate > 0.0 && wanted.rate <= kMaxRate)) {
+    return Status::error("rate: must be in (0, " + readable(kMaxRate) + "] Hz, got " +
+                         readable(wanted.rate));
+  }
+  if (wanted.substeps < 1 || wanted.substeps > 1000) {
+    return Status::error("substeps: must be in [1, 1000], got " + std::to_string(wanted.substeps));
+  }
+  const auto integrator = engine::parseIntegrator(wanted.integrator);
+  if (!integrator) {
+    return Status::error("integrator: unknown integrator " + quoteInput(wanted.integrator) +
+                         " (known: " + engine::integratorNames() + ")");
+  }
+  const Status gravity = checkVector(wanted.gravity, kMaxAcceleration, "gravity", "m/s^2");
+  if (!gravity) return gravity;
+  const auto policy = parseDivergencePolicy(wanted.divergence_policy);
+  if (!policy) {
+    return Status::error("divergence_policy: unknown policy " +
+                         quoteInput(wanted.divergence_policy) + " (known: continue, pause, reset)");
+  }
+  if (!(wanted.publish_rate > 0.0 && wanted.publish_rate <= kMaxPublishRate)) {
+    return Status::error("publish_rate: must be in (0, " + readable(kMaxPublishRate) +
+                         "] Hz, got " + readable(wanted.publish_rate));
+  }
+  PhysicsSettings out = base;
+  engine::WorldConfig& c = out.config;
+  // dt exactly as a scene's rate gives it, so a node started with ~rate R and one set to R live
+  // step alike.
+  c.dt = 1.0 / wanted.rate;
+  c.max_frame_time = std::max(base.config.max_frame_time, c.dt);
+  c.substeps = wanted.substeps;
+  c.integrator = *integrator;
+  c.gravity = wanted.gravity;
+  c.auto_substep = wanted.auto_substep;
+  c.divergence_policy = *policy;
+  const Status config = engine::validateConfig(c);
+  if (!config) return config;
+  engine::CollisionSettings& k = out.collisions;
+  k.particle_collisions = wanted.particle_collisions;
+  k.continuous = wanted.continuous;
+  for (const auto& [name, value, high] :
+       {std::tuple<const char*, double, double>{"particle_restitution", wanted.particle_restitution,
+                                                1.0},
+        {"particle_friction", wanted.particle_friction, 100.0},
+        {"penetration_slop", wanted.penetration_slop, 1.0}}) {
+    const Status checked = checkNonNegative(value, high, name, "");
+    if (!checked) return checked;
+  }
+  if (wanted.max_iterations < 1 || wanted.max_iterations > 10000) {
+    return Status::error("max_iterations: must be in [1, 10000], got " +
+                         std::to_string(wanted.max_iterations));
+  }
+  k.particle_restitution = wanted.particle_restitution;
+  k.particle_friction = wanted.particle_friction;
+  k.max_iterations = wanted.max_iterations;
+  k.penetration_slop = wanted.penetration_slop;
+  const Status collisions = engine::validateCollisionSettings(k);
+  if (!collisions) return collisions;
+  return out;
+}
+
+std::string describeConfiguration(const PhysicsSettings& physics) {
+  const engine::WorldConfig& c = physics.config;
+  const engine::CollisionSettings& k = physics.collisions;
+  std::ostringstream out;
+  out << "integrator: " << engine::integratorName(c.integrator) << "\n"
+      << "rate: " << exact(1.0 / c.dt) << "\n"
+      << "dt: " << exact(c.dt) << "\n"
+      << "substeps: " << c.substeps << "\n"
+      << "gravity: [" << exact(c.gravity.x()) << ", " << exact(c.gravity.y()) << ", "
+      << exact(c.gravity.z()) << "]\n"
+      << "auto_substep: " << boolText(c.auto_substep) << "\n"
+      << "divergence_policy: " << engine::divergencePolicyName(c.divergence_policy) << "\n"
+      << "energy_growth_limit: " << exact(c.energy_growth_limit) << "\n"
+      << "particle_collisions: " << boolText(k.particle_collisions) << "\n"
+      << "broadphase: " << engine::broadphaseName(k.broadphase) << "\n"
+      << "continuous: " << boolText(k.continuous) << "\n"
+      << "particle_restitution: " << exact(k.particle_restitution) << "\n"
+      << "particle_friction: " << exact(k.particle_friction) << "\n"
+      << "max_iterations: " << k.max_iterations << "\n"
+      << "penetration_slop: " << exact(k.penetration_slop) << "\n"
+      << "collide_linked: " << boolText(k.collide_linked) << "\n"
+      << "rod_tolerance: " << exact(k.rod_tolerance) << "\n"
+      << "velocity_tolerance: " << exact(k.velocity_tolerance) << "\n"
+      << "max_contacts: " << k.max_contacts << "\n";
+  return out.str();
+}
+
+std::uint64_t sceneHash(const engine::World& scene) {
+  Fnv hash;
+  hash.add(scene.stateHash());
+  const engine::ParticleStore& particles = scene.particles();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    hash.add(particles.inverseMasses()[i]);
+    hash.add(particles.radii()[i]);
+    hash.add(particles.dampings()[i]);
+  }
+  // How many of each kind: every kind's list, in its order.
+  const auto add_counts = [&](const auto& kinds) {
+    kinds.forEach([&](const auto& kind) { hash.add(static_cast<std::uint64_t>(kind.size())); });
+  };
+  add_counts(scene.generators());
+  add_counts(scene.links());
+  add_counts(scene.colliders());
+  const std::string configuration =
+      describeConfiguration(PhysicsSettings{scene.config(), scene.collisionSettings()});
+  hash.add(configuration.data(), configuration.size());
+  return hash.value();
+}
+
+}  // namespace node
+}  // namespace mass_aggregate_sim

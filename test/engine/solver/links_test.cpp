@@ -1,0 +1,222 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "mass_aggregate_sim/engine/world/world.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+constexpr Real kGravity = 9.81;
+
+World gravityWorld(const int substeps = 1) {
+  WorldConfig config;
+  config.gravity = Vec3(0.0, 0.0, -kGravity);
+  config.substeps = substeps;
+  return World(config);
+}
+
+ParticleId addAt(World& world, const Vec3& position, const Real mass = 1.0,
+                 const Vec3& velocity = Vec3::Zero()) {
+  ParticleSpec spec;
+  spec.position = position;
+  spec.velocity = velocity;
+  spec.inverse_mass = mass > 0.0 ? 1.0 / mass : 0.0;
+  spec.radius = 0.05;
+  return *world.addParticle(spec);
+}
+
+Vec3 positionOf(const World& world, const ParticleId id) {
+  return world.particles().positions().col(*world.particles().find(id));
+}
+
+TEST(Rod, AnchoredPendulumKeepsItsLength) {
+  for (const Integrator integrator : {Integrator::kSemiImplicitEuler, Integrator::kPositionVerlet,
+                                      Integrator::kVelocityVerlet, Integrator::kRk4}) {
+    World world = gravityWorld();
+    WorldConfig config = world.config();
+    config.integrator = integrator;
+    ASSERT_TRUE(world.setConfig(config).isOk());
+    const Vec3 anchor(0.0, 0.0, 2.0);
+    const ParticleId bob = addAt(world, Vec3(1.5, 0.0, 2.0));
+    ASSERT_TRUE(world.addLink(Rod::anchoredAt(bob, anchor, 1.5)).isOk());
+    Real lowest = 10.0;
+    for (int s = 0; s < 600; ++s) {
+      world.step();
+      const Real length = (positionOf(world, bob) - anchor).norm();
+      ASSERT_LE(std::abs(length - 1.5) / 1.5, 1e-6) << integratorName(integrator) << " step " << s;
+      lowest = std::min(lowest, positionOf(world, bob).z());
+    }
+    EXPECT_NEAR(lowest, 0.5, 0.02) << integratorName(integrator);  // it swings through the bottom
+  }
+}
+
+TEST(Rod, SpinningPairKeepsItsLengthAndMomentum) {
+  World world;  // no gravity
+  const ParticleId a = addAt(world, Vec3(-0.5, 0, 0), 1.0, Vec3(0, -3, 0));
+  const ParticleId b = addAt(world, Vec3(0.5, 0, 0), 2.0, Vec3(0, 1.5, 0.2));
+  ASSERT_TRUE(world.addLink(Rod::between(a, b, 1.0)).isOk());
+  const Vec3 momentum = world.linearMomentum();
+  for (int s = 0; s < 600; ++s) {
+    world.step();
+    const Real length = (positionOf(world, a) - positionOf(world, b)).norm();
+    ASSERT_LE(std::abs(length - 1.0), 1e-6) << "step " << s;
+  }
+  EXPECT_NEAR((world.linearMomentum() - momentum).norm(), 0.0, 1e-9);
+}
+
+TEST(Cable, AnchoredCableNeverExceedsItsLengthAndReflects) {
+  for (const Real e : {0.0, 0.5}) {
+    World world = gravityWorld();
+    const Vec3 anchor(0.0, 0.0, 3.0);
+    const ParticleId bob = addAt(world, Vec3(0.0, 0.0, 2.9));
+    ASSERT_TRUE(world.addLink(Cable::anchoredAt(bob, anchor, 1.0, e)).isOk());
+    Real highest_after_snap = -10.0;
+    bool snapped = false;
+    for (int s = 0; s < 300; ++s) {
+      world.step();
+      const Real length = (positionOf(world, bob) - anchor).norm();
+      ASSERT_LE(length, 1.0 * (1.0 + 1e-12)) << "step " << s;
+      const Real vz = world.particles().velocities()(2, 0);
+      if (length > 1.0 - 1e-9) snapped = true;
+      if (snapped) highest_after_snap = std::max(highest_after_snap, positionOf(world, bob).z());
+      (void)vz;
+    }
+    EXPECT_TRUE(snapped);
+    // e = 0: it stays hanging at the full length; e = 0.5: it rebounds upwards.
+    if (e == 0.0) {
+      EXPECT_NEAR(highest_after_snap, 2.0, 1e-9);
+    } else {
+      EXPECT_GT(highest_after_snap, 2.1);
+    }
+    EXPECT_NEAR(world.particles().velocities().col(0).norm(), 0.0, 1e-6);
+    EXPECT_NEAR(positionOf(world, bob).z(), 2.0, 1e-9);
+  }
+}
+
+TEST(Cable, PairCableOnlyPulls) {
+  World world;
+  const ParticleId a = addAt(world, Vec3(0, 0, 0), 1.0, Vec3(-1, 0, 0));
+  const ParticleId b = addAt(world, Vec3(0.5, 0, 0), 1.0, Vec3(1, 0, 0));
+  ASSERT_TRUE(world.addLink(Cable::between(a, b, 1.0, 0.0)).isOk());
+  // Slack: moves freely towards each other (no push) and apart until taut.
+  for (int s = 0; s < 120; ++s) {
+    world.step();
+    ASSERT_LE((positionOf(world, a) - positionOf(world, b)).norm(), 1.0 * (1.0 + 1e-12));
+  }
+  // Taut with e = 0: both stop (equal masses, opposite velocities).
+  EXPECT_NEAR(world.kineticEnergy(), 0.0, 1e-12);
+  EXPECT_NEAR((positionOf(world, a) - positionOf(world, b)).norm(), 1.0, 1e-9);
+}
+
+TEST(Links, ValidationIdsAndRemoval) {
+  World world;
+  const ParticleId a = addAt(world, Vec3(0, 0, 0));
+  const ParticleId b = addAt(world, Vec3(1, 0, 0));
+  const ParticleId c = addAt(world, Vec3(2, 0, 0));
+  EXPECT_FALSE(world.addLink(Rod::between(a, a, 1.0)).isOk());
+  EXPECT_FALSE(world.addLink(Rod::between(a, b, 0.0)).isOk());
+  EXPECT_FALSE(world.addLink(Cable::between(a, b, 1.0, 1.5)).isOk());
+  EXPECT_FALSE(world.addLink(Rod::anchoredAt(a, Vec3(std::nan(""), 0, 0), 1.0)).isOk());
+  EXPECT_FALSE(world.addLink(Cable::anchoredAt(ParticleId{99, 0}, Vec3::Zero(), 1.0)).isOk());
+  EXPECT_TRUE(world.links().empty());
+
+  const auto spring = world.addGenerator(Spring::between(a, b, 10.0, 1.0));
+  const auto rod = world.addLink(Rod::between(a, b, 1.0));
+  const auto cable = world.addLink(Cable::between(b, c, 1.0));
+  const auto anchored = world.addLink(Rod::anchoredAt(c, Vec3(2, 0, 1), 1.0));
+  ASSERT_TRUE(spring && rod && cable && anchored);
+  // One id space for generators and links.
+  EXPECT_NE(*spring, *rod);
+  EXPECT_NE(*rod, *cable);
+  EXPECT_EQ(world.links().size(), 3u);
+  EXPECT_TRUE(world.removeGenerator(*rod).isOk());
+  EXPECT_FALSE(world.removeGenerator(*rod).isOk());
+  EXPECT_EQ(world.links().of<Rod>().size(), 1u);  // the anchored one
+  // Removing a particle removes the links that refer to it.
+  EXPECT_TRUE(world.removeParticle(c).isOk());
+  EXPECT_TRUE(world.links().empty());
+  EXPECT_EQ(world.generators().of<Spring>().size(), 1u);
+}
+
+TEST(Links, LinkedParticlesDoNotCollideUnlessAsked) {
+  for (const bool collide_linked : {false, true}) {
+    World world;
+    CollisionSettings settings;
+    settings.particle_collisions = true;
+    settings.collide_linked = collide_linked;
+    ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
+    // Radii 0.05 each, held 0.08 apart by a rod: they overlap.
+    const ParticleId a = addAt(world, Vec3(0, 0, 0));
+    const ParticleId b = addAt(world, Vec3(0.08, 0, 0));
+    addAt(world, Vec3(0.16, 0, 0));  // overlaps b, not linked to it
+    ASSERT_TRUE(world.addLink(Rod::between(a, b, 0.08)).isOk());
+    world.step();
+    // The rod always counts; a-b only when linked pairs collide; b-c always.
+    EXPECT_EQ(world.lastContactStats().contacts, collide_linked ? 3u : 2u);
+  }
+}
+
+// The seeds' bridge: a deck of two rows of particles, rods across it, cables along it, each
+// particle hung by a cable from an anchor above; the middle carries a heavy load. It settles with
+// every rod at its length and every cable within its maximum (both to 1e-6 relative), the load
+// held up by the cables.
+TEST(Bridge, CarriesALoadAndSettles) {
+  World world = gravityWorld(2);
+  // A structure with closed loops of links converges more slowly than a chain: 50 passes.
+  CollisionSettings settings;
+  settings.max_iterations = 50;
+  ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
+  std::vector<ParticleId> nodes;
+  for (int i = 0; i < 12; ++i) {
+    const Real mass = (i >= 4 && i <= 7) ? 10.0 : 1.0;  // the load rests on the middle section
+    nodes.push_back(addAt(world, Vec3((i / 2) * 2.0 - 5.0, (i % 2) * 2.0 - 1.0, 4.0), mass));
+  }
+  for (int i = 0; i + 2 < 12; ++i) {
+    ASSERT_TRUE(world.addLink(Cable::between(nodes[i], nodes[i + 2], 2.0, 0.3)).isOk());
+  }
+  for (int i = 0; i < 12; i += 2) {
+    ASSERT_TRUE(world.addLink(Rod::between(nodes[i], nodes[i + 1], 2.0)).isOk());
+  }
+  for (int i = 0; i < 12; ++i) {
+    const Vec3 anchor((i / 2) * 2.2 - 5.5, (i % 2) * 2.4 - 1.2, 7.0);
+    // Longer towards the middle, so the deck hangs in a curve.
+    const int from_end = std::min(i / 2, 5 - i / 2);
+    const Real length = (anchor - positionOf(world, nodes[i])).norm() + 0.3 * from_end;
+    ASSERT_TRUE(world.addLink(Cable::anchoredAt(nodes[i], anchor, length, 0.5)).isOk());
+  }
+  const auto check = [&](const int step) {
+    for (const Rod& rod : world.links().of<Rod>()) {
+      const Real length = (positionOf(world, rod.a) - positionOf(world, rod.b)).norm();
+      ASSERT_LE(std::abs(length - rod.length) / rod.length, 1e-6) << "step " << step;
+    }
+    for (const Cable& cable : world.links().of<Cable>()) {
+      const Vec3 other = cable.anchored() ? cable.anchor : positionOf(world, cable.b);
+      const Real length = (positionOf(world, cable.a) - other).norm();
+      ASSERT_LE(length, cable.max_length * (1.0 + 1e-6)) << "step " << step;
+    }
+  };
+  for (int s = 0; s < 600; ++s) {
+    world.step();
+    check(s);
+    if (HasFatalFailure()) return;
+  }
+  // Settled: still, and the loaded middle hangs on taut supports.
+  EXPECT_LT(world.kineticEnergy(), 1e-6);
+  std::vector<Cable> supports;
+  for (const Cable& cable : world.links().of<Cable>()) {
+    if (cable.anchored()) supports.push_back(cable);
+  }
+  for (int i = 4; i <= 7; ++i) {
+    const Cable& support = supports[i];
+    const Real length = (positionOf(world, nodes[i]) - support.anchor).norm();
+    EXPECT_NEAR(length, support.max_length, 1e-5) << "support " << i;
+  }
+  EXPECT_GT(positionOf(world, nodes[5]).z(), 2.0);
+}
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim
