@@ -331,6 +331,29 @@ links:
   EXPECT_DOUBLE_EQ(rods[1].length, 1.5);
 }
 
+TEST(SceneLoaderTest, ACylinderLoadsThroughItsKindsFields) {
+  // No node code names the cylinder: the scene reader takes its fields from ShapeKind::fields.
+  const auto loaded = load(R"(
+colliders:
+  - {type: cylinder, center: [1, 2, 3], axis: [0, 0, 2], radius: 0.5, half_height: 0.25,
+     friction: 0.4}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const auto& cylinders = loaded.value().world.colliders().of<engine::CylinderCollider>();
+  ASSERT_EQ(cylinders.size(), 1u);
+  EXPECT_EQ(cylinders[0].center, Vec3(1, 2, 3));
+  EXPECT_EQ(cylinders[0].axis, Vec3::UnitZ());
+  EXPECT_DOUBLE_EQ(cylinders[0].radius, 0.5);
+  EXPECT_DOUBLE_EQ(cylinders[0].half_height, 0.25);
+  EXPECT_DOUBLE_EQ(cylinders[0].material.friction, 0.4);
+  expectError("colliders: [{type: cylinder, radius: 0.5, heigth: 1}]", "scene.colliders[0].heigth",
+              "unknown key");
+  expectError("colliders: [{type: cylinder, radius: -1}]", "scene.colliders[0]",
+              "cylinder radius must be finite and > 0");
+  expectError("colliders: [{type: cone}]", "scene.colliders[0].type",
+              "known: plane, sphere, box, capsule, cylinder");
+}
+
 TEST(SceneLoaderTest, BadCollidersAndCollisionsNameTheKey) {
   expectError("{colliders: [{type: cone}]}", "scene.colliders[0].type", "unknown collider 'cone'");
   expectError("{colliders: [{type: sphere, radius: -1}]}", "scene.colliders[0]", "radius");
