@@ -82,9 +82,8 @@ Status checkParticleSpec(const engine::ParticleSpec& spec, const std::string& wo
   if (!checked) return checked;
   checked = checkVector(spec.acceleration, kMaxAcceleration, "acceleration", "m/s^2");
   if (!checked) return checked;
-  if (!std::isfinite(spec.inverse_mass) || spec.inverse_mass < 0.0) {
-    return Status::error("mass: must be finite and > 0 (or fixed)");
-  }
+  // Finite, >= 0 inverse mass and damping in [0, 1] are the engine's (validateSpec); the node
+  // adds only its limits.
   if (spec.inverse_mass > 0.0) {
     // m = 1 / w; compared as w so no division is needed.
     if (spec.inverse_mass > 1.0 / kMinMass || spec.inverse_mass < 1.0 / kMaxMass) {
@@ -92,12 +91,7 @@ Status checkParticleSpec(const engine::ParticleSpec& spec, const std::string& wo
                            "] kg, got " + number(1.0 / spec.inverse_mass));
     }
   }
-  checked = checkNonNegative(spec.radius, kMaxRadius, "radius", "m");
-  if (!checked) return checked;
-  if (!std::isfinite(spec.damping) || spec.damping < 0.0 || spec.damping > 1.0) {
-    return Status::error("damping: must be in [0, 1] (fraction of velocity kept per second)");
-  }
-  return Status::ok();
+  return checkNonNegative(spec.radius, kMaxRadius, "radius", "m");
 }
 
 Status checkParamType(const std::string& name, const XmlRpc::XmlRpcValue& value,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 #include "mass_aggregate_sim/node/input_limits.h"
@@ -138,9 +139,6 @@ Status checkLinkNumbers(const LinkRequest& r) {
                            " m (negative: the current distance)");
     }
   }
-  if (!std::isfinite(r.restitution) || r.restitution < 0.0 || r.restitution > 1.0) {
-    return Status::error("restitution: must be in [0, 1]");
-  }
   return Status::ok();
 }
 
@@ -158,10 +156,14 @@ Result<GeneratorId> addLink(engine::World& world, const LinkRequest& request) {
 }
 
 bool isLink(const engine::World& world, const GeneratorId id) {
-  const engine::ForceGenerators& g = world.generators();
-  const engine::Links& l = world.links();
-  return containsId(g.of<engine::Spring>(), id) || containsId(g.of<engine::StiffSpring>(), id) ||
-         containsId(l.of<engine::Cable>(), id) || containsId(l.of<engine::Rod>(), id);
+  // Links are the generators drawn between two points (springs) and every link kind.
+  bool found = false;
+  world.generators().forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    if constexpr (engine::ForceKind<Kind>::kDrawn) found = found || containsId(kind, id);
+  });
+  world.links().forEach([&](const auto& kind) { found = found || containsId(kind, id); });
+  return found;
 }
 
 }  // namespace node

@@ -38,12 +38,9 @@ ParticleSpec readParticleProperties(XmlRpcValue& s, const std::string& key) {
   const Real mass = realOr(s, key, "mass", 1.0);
   if (!fixed && mass <= 0.0) throw ParamError(key + ".mass", "must be > 0 (or set fixed: true)");
   spec.inverse_mass = fixed ? 0.0 : 1.0 / mass;
+  // Radius and damping are checked by the engine when the particle is added.
   spec.radius = realOr(s, key, "radius", 0.1);
-  if (spec.radius < 0.0) throw ParamError(key + ".radius", "must be >= 0");
   spec.damping = realOr(s, key, "damping", 1.0);
-  if (spec.damping < 0.0 || spec.damping > 1.0) {
-    throw ParamError(key + ".damping", "must be in [0, 1] (fraction of velocity kept per second)");
-  }
   spec.velocity = fixed ? Vec3::Zero() : vec3Or(s, key, "velocity", Vec3::Zero());
   spec.acceleration = vec3Or(s, key, "acceleration", Vec3::Zero());
   return spec;

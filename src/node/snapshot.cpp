@@ -1,6 +1,7 @@
 #include "mass_aggregate_sim/node/snapshot.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -8,14 +9,6 @@ namespace {
 
 using engine::Real;
 using engine::Vec3;
-
-// Tension of a spring from a to b: k (l - L), zero for a slack bungee.
-Real springTension(const Vec3& a, const Vec3& b, const Real stiffness, const Real rest_length,
-                   const bool pull_only) {
-  const Real extension = (a - b).norm() - rest_length;
-  if (pull_only && extension <= 0.0) return 0.0;
-  return stiffness * extension;
-}
 
 void takeLinks(const engine::World& world, std::vector<LinkSegment>& out) {
   out.clear();
@@ -28,15 +21,15 @@ void takeLinks(const engine::World& world, std::vector<LinkSegment>& out) {
   const auto segment = [&](const Vec3& a, const Vec3& b, const Real tension) {
     out.push_back(LinkSegment{a, b, tension});
   };
-  for (const auto& s : g.of<engine::Spring>()) {
-    const Vec3 p = at(s.a);
-    const Vec3 other = s.anchored() ? s.anchor : at(s.b);
-    segment(p, other, springTension(p, other, s.stiffness, s.rest_length, s.pull_only));
-  }
-  for (const auto& s : g.of<engine::StiffSpring>()) {
-    const Vec3 p = at(s.particle);
-    segment(p, s.anchor, springTension(p, s.anchor, s.stiffness, 0.0, false));
-  }
+  g.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    if constexpr (engine::ForceKind<Kind>::kDrawn) {
+      for (const Kind& generator : kind) {
+        const engine::DrawnSegment drawn = engine::ForceKind<Kind>::drawn(generator, particles);
+        segment(drawn.a, drawn.b, drawn.tension);
+      }
+    }
+  });
   const engine::Links& links = world.links();
   if (links.empty()) return;
   // World::linkTensions is sorted by id.

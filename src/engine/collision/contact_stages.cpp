@@ -71,13 +71,6 @@ void colliderContact(Contact* c, const std::uint32_t i, const std::uint32_t slot
 // under the floor at the end of the step.
 Real positionOnlyReach(const Real radius) { return radius; }
 
-// Swept results exist only when the swept tests ran this substep.
-bool sweptThisSubstep(const ContactWorkspace& ws, const CollisionSettings& settings,
-                      const std::size_t n) {
-  return settings.continuous && ws.time_of_impact.size() == n && ws.collider_hit.size() == n &&
-         ws.pair_is_swept.size() == ws.pairs.size();
-}
-
 // Bottom-up order: heights along `up` quantised into buckets of half the smallest radius (at
 // least (highest - lowest) / n), so one counting sort orders the contacts in O(contacts + n);
 // contacts closer in height than that keep the broadphase's order. Bucket 0 holds the contacts
@@ -345,7 +338,7 @@ bool generateColliderContacts(StepContext& ctx, const std::size_t begin, const s
   const auto radius = particles.radii();
   const auto inverse_mass = particles.inverseMasses();
   const CollisionSettings& settings = ctx.collisions;
-  const bool swept = sweptThisSubstep(ws, settings, particles.size());
+  const bool swept = ws.sweptThisSubstep(settings.continuous, particles.size());
   const Real margin = contactMargin(settings.penetration_slop);
   ContactSink sink(ws.contacts, settings.max_contacts, ctx.dropped, ws.position_only_contacts);
   bool in_two = false;
@@ -391,7 +384,7 @@ int otherColliderContacts(const void* const context, const std::size_t i, GroupC
   const StepContext& ctx = *static_cast<const StepContext*>(context);
   const ContactWorkspace& ws = ctx.contacts;
   const ParticleStore& particles = ctx.particles;
-  if (sweptThisSubstep(ws, ctx.collisions, particles.size()) && ws.collider_hit[i] >= 0 &&
+  if (ws.sweptThisSubstep(ctx.collisions.continuous, particles.size()) && ws.collider_hit[i] >= 0 &&
       ws.time_of_impact[i] == ws.collider_hits[ws.collider_hit[i]].time) {
     return 2;
   }
@@ -427,7 +420,7 @@ void generateContacts(StepContext& ctx) {
   const auto radius = particles.radii();
   const auto inverse_mass = particles.inverseMasses();
   const std::size_t n = particles.size();
-  const bool swept = sweptThisSubstep(ws, settings, n);
+  const bool swept = ws.sweptThisSubstep(settings.continuous, n);
   const Real margin = contactMargin(settings.penetration_slop);
   ContactSink sink(ws.contacts, settings.max_contacts, ctx.dropped, ws.position_only_contacts);
 

@@ -33,6 +33,16 @@ void springJacobians(const Vec3& d, const Spring& spring, Mat3& k, Mat3& dv) {
 
 }  // namespace
 
+DrawnSegment ForceKind<Spring>::drawn(const Spring& spring, const ParticleStore& particles) {
+  const auto x = particles.positions();
+  const Vec3 a = x.col(particles.denseIndexUnchecked(spring.a));
+  const Vec3 b =
+      spring.anchored() ? spring.anchor : Vec3(x.col(particles.denseIndexUnchecked(spring.b)));
+  const Real extension = (a - b).norm() - spring.rest_length;
+  const Real tension = spring.pull_only && extension <= 0.0 ? 0.0 : spring.stiffness * extension;
+  return DrawnSegment{a, b, tension};
+}
+
 Status ForceKind<Spring>::validate(Spring& spring, const ParticleStore& particles) {
   if (spring.anchored()) {
     const Status particle = particles.checkReference(spring.a, "particle");

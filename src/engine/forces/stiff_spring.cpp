@@ -33,6 +33,12 @@ bool byIndex(const StiffParticle& a, const StiffParticle& b) { return a.index < 
 
 }  // namespace
 
+DrawnSegment ForceKind<StiffSpring>::drawn(const StiffSpring& spring,
+                                           const ParticleStore& particles) {
+  const Vec3 a = particles.positions().col(particles.denseIndexUnchecked(spring.particle));
+  return DrawnSegment{a, spring.anchor, spring.stiffness * (a - spring.anchor).norm()};
+}
+
 Status ForceKind<StiffSpring>::validate(StiffSpring& spring, const ParticleStore& particles) {
   const Status particle = particles.checkReference(spring.particle, "particle");
   if (!particle) return particle;

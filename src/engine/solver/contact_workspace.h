@@ -63,6 +63,11 @@ struct ContactWorkspace {
     Real friction;
   };
   std::vector<ColliderHit> collider_hits;
+  // Swept results exist only when the swept tests ran this substep (n particles).
+  bool sweptThisSubstep(const bool continuous, const std::size_t n) const {
+    return continuous && time_of_impact.size() == n && collider_hit.size() == n &&
+           pair_is_swept.size() == pairs.size();
+  }
   // This substep's contacts were made and solved in parts (ContactResolver::addPart).
   bool solved_in_parts = false;
   BroadphaseFinder broadphase;

@@ -11,13 +11,6 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-// Swept results exist only when the swept tests ran this substep.
-bool sweptThisSubstep(const ContactWorkspace& ws, const CollisionSettings& settings,
-                      const std::size_t n) {
-  return settings.continuous && ws.time_of_impact.size() == n && ws.collider_hit.size() == n &&
-         ws.pair_is_swept.size() == ws.pairs.size();
-}
-
 // Only collider contacts: each particle's are made together, so they are made and solved in parts
 // of particles while they are still in the cache (the same results as all at once: see
 // ContactResolver::beginParts). Groups of four consecutive particles that each meet at most one
@@ -45,7 +38,7 @@ void solveColliderContactsInParts(StepContext& ctx) {
   ColliderGroupInputs groups;
   groups.planes = ws.batch_planes.data();
   groups.plane_count = ws.batch_planes.size();
-  if (ctx.colliders.size() != planes.size() || sweptThisSubstep(ws, settings, n)) {
+  if (ctx.colliders.size() != planes.size() || ws.sweptThisSubstep(settings.continuous, n)) {
     groups.others = &otherColliderContacts;
     groups.others_context = &ctx;
   }
@@ -133,7 +126,7 @@ void integratePositions(StepContext& ctx) {
       seedVerletHistory(particles, ctx.caches.damping, i, h, integration.acceleration.col(i));
     };
     for (const std::uint32_t i : touched) reseed(i);
-    if (sweptThisSubstep(ws, ctx.collisions, particles.size())) {
+    if (ws.sweptThisSubstep(ctx.collisions.continuous, particles.size())) {
       for (std::size_t i = 0; i < particles.size(); ++i) {
         if (ws.time_of_impact[i] < 1.0) reseed(i);
       }

@@ -1,5 +1,5 @@
 // World: construction, settings, and every request that changes the scene, each validated (by
-// its kind) before anything changes. The step is in step.cpp, the guards in guards.cpp.
+// its kind) before anything changes. The step is in step.cpp, the guards in energy_guard.cpp.
 #include "mass_aggregate_sim/engine/world/world.h"
 
 #include <algorithm>

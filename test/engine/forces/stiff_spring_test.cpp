@@ -80,7 +80,8 @@ TEST_P(StiffSpringClosedForm, AmplitudeAfterTenSecondsIsExactAtEveryOmegaH) {
     std::printf("[ stiff ] %-20s omega h %-6.3g amplitude error after 10 s %.2e\n",
                 integratorName(GetParam()), omega_h, relative);
     EXPECT_FALSE(r.diverged);
-    EXPECT_LT(relative, 0.01) << "omega h " << omega_h;
+    // Round-off only (5.4e-12 at omega h 0.1 after 600,000 steps): far inside the 1 % asked for.
+    EXPECT_LT(relative, 1e-10) << "omega h " << omega_h;
     // Not only the amplitude: the state itself (the phase is exact too).
     EXPECT_LT((r.position - e.position).norm(), 1e-6) << "omega h " << omega_h;
     EXPECT_LT((r.velocity - e.velocity).norm(), 1e-3) << "omega h " << omega_h;

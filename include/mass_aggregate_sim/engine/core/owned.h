@@ -8,27 +8,32 @@ namespace engine {
 
 // A part of an object's state kept on the heap, so the owner's header needs only T's declaration:
 // copied and moved with its owner like a plain member. T must be complete where the owner's
-// special members are defined.
+// special members are defined. A moved-from Owned holds a default T again on its next use, so a
+// moved-from owner is an empty, usable object rather than one that dereferences null.
 template <typename T>
 class Owned {
  public:
-  Owned() : value_(std::make_unique<T>()) {}
-  Owned(const Owned& other) : value_(std::make_unique<T>(*other.value_)) {}
+  Owned() = default;
+  Owned(const Owned& other) : value_(other.value_ ? std::make_unique<T>(*other.value_) : nullptr) {}
   Owned& operator=(const Owned& other) {
-    if (this != &other) value_ = std::make_unique<T>(*other.value_);
+    if (this != &other) value_ = other.value_ ? std::make_unique<T>(*other.value_) : nullptr;
     return *this;
   }
   Owned(Owned&&) noexcept = default;
   Owned& operator=(Owned&&) noexcept = default;
   ~Owned() = default;
 
-  T& operator*() { return *value_; }
-  const T& operator*() const { return *value_; }
-  T* operator->() { return value_.get(); }
-  const T* operator->() const { return value_.get(); }
+  T& operator*() { return held(); }
+  const T& operator*() const { return held(); }
+  T* operator->() { return &held(); }
+  const T* operator->() const { return &held(); }
 
  private:
-  std::unique_ptr<T> value_;
+  T& held() const {
+    if (!value_) value_ = std::make_unique<T>();
+    return *value_;
+  }
+  mutable std::unique_ptr<T> value_;
 };
 
 // Data derived from an object's state to save work, never state itself: a copy starts empty and

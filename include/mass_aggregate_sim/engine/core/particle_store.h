@@ -19,7 +19,7 @@ struct ParticleSpec {
   Vec3 velocity = Vec3::Zero();
   Vec3 acceleration = Vec3::Zero();  // constant acceleration of this particle, on top of gravity
   Real inverse_mass = 1.0;
-  Real damping = 1.0;  // fraction of velocity kept per second: v' = v * damping^dt
+  Real damping = 1.0;  // fraction of velocity kept per second: the ODE term v' = ln(damping) v
   Real radius = 0.1;
   std::string name;
 };

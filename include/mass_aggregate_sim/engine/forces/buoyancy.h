@@ -23,6 +23,7 @@ template <>
 struct ForceKind<Buoyancy> {
   static constexpr const char* kName = "buoyancy";
   // Its force depends on height in a way the guard's potential energy leaves out.
+  static constexpr bool kDrawn = false;
   static constexpr bool kUncountedWork = true;
   static Status validate(Buoyancy& buoyancy, const ParticleStore& particles);
   static bool refersTo(const Buoyancy& buoyancy, ParticleId id) { return buoyancy.particle == id; }

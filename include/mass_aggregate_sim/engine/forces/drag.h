@@ -16,6 +16,7 @@ struct Drag {
 template <>
 struct ForceKind<Drag> {
   static constexpr const char* kName = "drag";
+  static constexpr bool kDrawn = false;
   static constexpr bool kUncountedWork = false;
   static Status validate(Drag& drag, const ParticleStore& particles);
   static bool refersTo(const Drag& drag, ParticleId id) { return drag.particle == id; }

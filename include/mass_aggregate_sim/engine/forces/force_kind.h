@@ -35,8 +35,19 @@ struct StiffnessTerm;
 //                             their springs for the stability analysis
 //   kUncountedWork            does work the energy guard cannot count (its energy is not a
 //                             potential): a world with one is not guarded
+//   kDrawn                    whether the kind acts between two points (a spring) and is drawn
+//                             as a line: then drawn(k, particles) gives the segment and its
+//                             tension; one-particle kinds (drag, buoyancy) are not drawn
 template <typename Kind>
 struct ForceKind;
+
+// A force generator as the node draws it: the line between its two ends and its tension (N, > 0
+// pulling the ends together, 0 for a slack bungee).
+struct DrawnSegment {
+  Vec3 a;
+  Vec3 b;
+  Real tension;
+};
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

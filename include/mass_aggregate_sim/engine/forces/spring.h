@@ -53,6 +53,9 @@ template <>
 struct ForceKind<Spring> {
   static constexpr const char* kName = "spring";
   static constexpr bool kUncountedWork = false;
+  static constexpr bool kDrawn = true;
+  // Tension k (l - L); zero for a slack bungee.
+  static DrawnSegment drawn(const Spring& spring, const ParticleStore& particles);
   static Status validate(Spring& spring, const ParticleStore& particles);
   static bool refersTo(const Spring& spring, ParticleId id) {
     return spring.a == id || spring.b == id;

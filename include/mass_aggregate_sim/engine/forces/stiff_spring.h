@@ -20,6 +20,9 @@ template <>
 struct ForceKind<StiffSpring> {
   static constexpr const char* kName = "stiff_spring";
   static constexpr bool kUncountedWork = false;
+  static constexpr bool kDrawn = true;
+  // Tension k l (rest length 0).
+  static DrawnSegment drawn(const StiffSpring& spring, const ParticleStore& particles);
   static Status validate(StiffSpring& spring, const ParticleStore& particles);
   static bool refersTo(const StiffSpring& spring, ParticleId id) { return spring.particle == id; }
   // The integrators see the spring as the constant acceleration that carries the particle from

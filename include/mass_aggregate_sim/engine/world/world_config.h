@@ -23,15 +23,18 @@ struct WorldConfig {
   // after the last scene change or external work (addForce, any set or add call); per-particle
   // accelerations and buoyancy do work the energy omits, so they turn the guard off. A step that
   // leaves kinetic + gravitational + elastic energy above
-  //   E_ref + energy_growth_limit * (kinetic + elastic)_ref + M |g|^2 dt^2 n + 1e-9 |energies|
-  // (M the movable mass, n the steps since the reference: explicit Euler's truncation under
-  // gravity) is a divergence. A symplectic integrator's energy swings by up to
-  // 1 / (1 - (omega h / 2)^2) along a stable orbit, so the default 10 stays silent up to
-  // omega h ~ 1.9 and fires within a few steps of any exponential runaway. The state each step
-  // ends in is judged in that step. Cost: one pass over the particles (kinetic and gravitational
-  // energy, and the finiteness check in the same pass); the elastic energy comes from evaluating
-  // the next step's forces early (semi-implicit Euler, one substep, no contacts; that step then
-  // uses them) or else from one more pass over the springs. 0 turns the guard off.
+  //   E_ref + (S (1 + energy_growth_limit) - 1) (kinetic + elastic)_ref + M |g|^2 dt^2 n
+  //         + 1e-9 |energies|
+  // is a divergence: S = energySwing() (stability.h) of the integrator at the stiffest spring's
+  // omega h, the most its reported energy swings along a bounded orbit (1 for explicit and
+  // implicit Euler and RK4, which never gain energy on a stable orbit), M the movable mass, n the
+  // steps since the reference (explicit Euler's truncation under gravity). So no bounded orbit
+  // below the integrator's stability limit trips it (up to 0.999 of the limit, where S is capped),
+  // and an exponential runaway is caught within a few steps. The state each step ends in is
+  // judged in that step. Cost: one pass over the particles (kinetic and gravitational energy, and
+  // the finiteness check in the same pass); the elastic energy comes from evaluating the next
+  // step's forces early (semi-implicit Euler, one substep, no contacts; that step then uses them)
+  // or else from one more pass over the springs. 0 turns the guard off.
   Real energy_growth_limit = 10.0;
 };
 
