@@ -125,7 +125,15 @@ void BM_ScenarioC_ColliderMix(benchmark::State& state) {
   bench::runContactSteps(state, world);
 }
 
+void BM_ScenarioC_ColliderMix_GeneralPath(benchmark::State& state) {
+  World world = bench::settledScene("C mix/" + std::to_string(state.range(0)),
+                                    [&] { return colliderMixWorld(state.range(0)); });
+  bench::useGeneralContactPath(world);
+  bench::runContactSteps(state, world);
+}
+
 BENCHMARK(BM_ScenarioC_ColliderMix)->Arg(1000)->Arg(10000)->Arg(100000);
+BENCHMARK(BM_ScenarioC_ColliderMix_GeneralPath)->Arg(1000)->Arg(10000)->Arg(100000);
 
 }  // namespace
 }  // namespace engine

@@ -115,6 +115,13 @@ void BM_ScenarioC_GroundGrid(benchmark::State& state) {
   runContactSteps(state, world);
 }
 
+void BM_ScenarioC_GroundGrid_GeneralPath(benchmark::State& state) {
+  World world = settledScene("C/" + std::to_string(state.range(0)),
+                             [&] { return settled(groundGridWorld(state.range(0))); });
+  bench::useGeneralContactPath(world);
+  runContactSteps(state, world);
+}
+
 void BM_ScenarioD_SettledPile(benchmark::State& state) {
   const auto broadphase = static_cast<Broadphase>(state.range(1));
   state.SetLabel(broadphaseName(broadphase));
@@ -143,6 +150,7 @@ void pileArguments(benchmark::internal::Benchmark* bench) {
 }
 
 BENCHMARK(BM_ScenarioC_GroundGrid)->Arg(1000)->Arg(10000)->Arg(100000);
+BENCHMARK(BM_ScenarioC_GroundGrid_GeneralPath)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_ScenarioD_SettledPile)->Apply(pileArguments)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScenarioD_FrictionPile)->Apply(pileArguments)->Unit(benchmark::kMicrosecond);
 

@@ -74,6 +74,16 @@ inline World settledScene(const std::string& name, const std::function<World()>&
   return *cache.world;
 }
 
+// The same world on the general contact path: a contact limit no scene reaches turns off the
+// collider-only path (contacts made and solved part by part, collider groups in vector lanes),
+// so a benchmark can show what that path is worth on a scene (issue 13: a special path stays
+// only where it pays 1.3x on a realistic scene).
+inline void useGeneralContactPath(World& world) {
+  CollisionSettings settings = world.collisionSettings();
+  settings.max_contacts = std::size_t{1} << 40;
+  world.setCollisionSettings(settings);
+}
+
 // Times world.step() of the scene settledScene() gave, and reports per particle-step, with the
 // at-rest quality of the state the timed steps ended in: its kinetic energy, the largest overlap
 // the contact phase left (m), the contacts and the resolver's passes in the last substep,

@@ -1,5 +1,6 @@
 #include "engine/forces/force_stage.h"
 
+#include "engine/forces/particle_acceleration.h"
 #include "engine/forces/stiff_spring_stage.h"
 #include "engine/solver/contact_workspace.h"
 #include "engine/world/step_context.h"
@@ -36,19 +37,20 @@ void ForceStage::accelerations(const ForceScene& scene, const Eigen::Ref<const V
   const auto own_acceleration = particles.accelerations();
   const Vec3 g = scene.gravity;
   const bool external = with_external && scene.external;
-  if (scene.generators.empty() && !external) {
-    for (std::size_t i = 0; i < n; ++i) out.col(i) = mobility[i] * (g + own_acceleration.col(i));
-    return;
+  const bool forces = !scene.generators.empty() || external;
+  if (forces) {
+    if (external) {
+      out = particles.forces();
+    } else {
+      out.setZero();
+    }
+    generatorForces(scene, x, v, h, out);
   }
-  if (external) {
-    out = particles.forces();
-  } else {
-    out.setZero();
-  }
-  generatorForces(scene, x, v, h, out);
-  // a = F/m + g + a_own, zero for immovable particles
   for (std::size_t i = 0; i < n; ++i) {
-    out.col(i) = out.col(i) * inverse_mass[i] + mobility[i] * (g + own_acceleration.col(i));
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      const Real uniform = uniformAcceleration(mobility[i], g[c], own_acceleration(c, i));
+      out(c, i) = forces ? particleAcceleration(out(c, i), inverse_mass[i], uniform) : uniform;
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "engine/integrators/semi_implicit_pass.h"
 
 #include "engine/core/simd.h"
+#include "engine/forces/particle_acceleration.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -29,9 +30,11 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
     const Real4 mass = kEnergies ? load(in.mass + i) : Real4{};
     for (int b = 0; b < 3; ++b) {
       const std::size_t k = 3 * i + 4 * static_cast<std::size_t>(b);
-      const Real4 uniform = spread(mobility, b) * (gravity[b] + load(in.own_acceleration + k));
+      const Real4 uniform =
+          uniformAcceleration(spread(mobility, b), gravity[b], load(in.own_acceleration + k));
       const Real4 acceleration =
-          kHasForces ? load(a + k) * spread(inverse_mass, b) + uniform : uniform;
+          kHasForces ? particleAcceleration(load(a + k), spread(inverse_mass, b), uniform)
+                     : uniform;
       store(a + k, acceleration);
       // v' = (v + a h) d^h,  x' = x + v' h
       const Real4 velocity = (load(v + k) + acceleration * h) * spread(damping, b);
@@ -44,8 +47,9 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
   for (; i < in.count; ++i) {
     for (std::size_t c = 0; c < 3; ++c) {
       const std::size_t k = 3 * i + c;
-      const Real uniform = in.mobility[i] * (g[c] + in.own_acceleration[k]);
-      const Real acceleration = kHasForces ? a[k] * in.inverse_mass[i] + uniform : uniform;
+      const Real uniform = uniformAcceleration(in.mobility[i], g[c], in.own_acceleration[k]);
+      const Real acceleration =
+          kHasForces ? particleAcceleration(a[k], in.inverse_mass[i], uniform) : uniform;
       a[k] = acceleration;
       const Real velocity = (v[k] + acceleration * in.h) * in.damping_factor[i];
       v[k] = velocity;
