@@ -1,0 +1,263 @@
+// Bullet 3 (btDiscreteDynamicsWorld, btDbvtBroadphase, btSequentialImpulseConstraintSolver with
+// 10 iterations) on the shared rigid scenes of rigid_scenes.h: the peer the project's own rigid
+// bodies are measured against. Only this executable links Bullet; the engine never does.
+//
+// Arguments of every case: /<scene size>/<substeps>/<sleeping>. A frame is 1/60 s made of
+// `substeps` calls stepSimulation(1 / (60 substeps), 0): maxSubSteps = 0 makes Bullet take exactly
+// that one step, where stepSimulation(1/60, n, 1/(60 n)) lets its accumulator round to n - 1 or
+// n + 1 steps in a frame. sleeping = 0 turns deactivation off for every body (the timing runs);
+// 1 keeps Bullet's default (a body at rest for 2 s sleeps).
+//
+// Each case builds its scene and simulates 10 s untimed, records the at-rest quality then
+// (counters), and times a fixed number of further frames: Time and CPU are per frame (1/60 s,
+// all its substeps), one thread.
+#include <benchmark/benchmark.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "rigid_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace bench {
+namespace rigid {
+namespace {
+
+constexpr double kFrameSeconds = 1.0 / 60.0;
+constexpr int kSolverIterations = 10;
+constexpr int kSettleFrames = 600;  // 10 s
+
+btVector3 toBullet(const Eigen::Vector3d& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
+                   static_cast<btScalar>(v.z()));
+}
+
+// Bullet multiplies the two bodies' coefficients; the scenes take the geometric mean (Box2D), which
+// is the product of the square roots. Restitution is 0 everywhere (checked in runScene), which
+// Bullet's product gives as well.
+btScalar bulletFriction(const double friction) {
+  return static_cast<btScalar>(std::sqrt(friction));
+}
+
+bool hasRestitution(const RigidScene& scene) {
+  return scene.ground.restitution != 0.0 ||
+         std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                     [](const BodySpec& body) { return body.restitution != 0.0; });
+}
+
+struct AtRest {
+  double kinetic_energy = 0.0;
+  double top_drop = 0.0;      // start height minus height now, of the scene's top body
+  double top_distance = 0.0;  // how far the top body is from where it started
+  double max_penetration = 0.0;
+  int contacts = 0;
+  int escaped = 0;
+  int asleep = 0;
+};
+
+class BulletWorld {
+ public:
+  BulletWorld(const RigidScene& scene, const int substeps, const bool sleeping)
+      : scene_(scene), substeps_(substeps) {
+    world_.setGravity(toBullet(scene.gravity));
+    world_.getSolverInfo().m_numIterations = kSolverIterations;
+
+    ground_shape_ = std::make_unique<btStaticPlaneShape>(
+        btVector3(0, 0, 1), static_cast<btScalar>(scene.ground.height));
+    btRigidBody::btRigidBodyConstructionInfo ground_info(0, nullptr, ground_shape_.get());
+    ground_info.m_friction = bulletFriction(scene.ground.friction);
+    ground_info.m_restitution = static_cast<btScalar>(scene.ground.restitution);
+    ground_ = std::make_unique<btRigidBody>(ground_info);
+    world_.addRigidBody(ground_.get());
+
+    bodies_.reserve(scene.bodies.size());
+    for (const BodySpec& spec : scene.bodies) {
+      btCollisionShape* const shape = shapeFor(spec);
+      const auto mass = static_cast<btScalar>(spec.isFixed() ? 0.0 : spec.mass);
+      btVector3 inertia(0, 0, 0);
+      if (!spec.isFixed()) shape->calculateLocalInertia(mass, inertia);
+      btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+      const Eigen::Quaterniond& q = spec.orientation;
+      info.m_startWorldTransform =
+          btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
+                                   static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
+                      toBullet(spec.position));
+      info.m_friction = bulletFriction(spec.friction);
+      info.m_restitution = static_cast<btScalar>(spec.restitution);
+      auto body = std::make_unique<btRigidBody>(info);
+      if (!spec.isFixed()) {
+        body->setLinearVelocity(toBullet(spec.linear_velocity));
+        body->setAngularVelocity(toBullet(spec.angular_velocity));
+        if (!sleeping) body->setActivationState(DISABLE_DEACTIVATION);
+      }
+      world_.addRigidBody(body.get());
+      bodies_.push_back(std::move(body));
+    }
+  }
+
+  // The world refers to its bodies until they are removed, and its destructor reads them.
+  ~BulletWorld() {
+    for (auto& body : bodies_) world_.removeRigidBody(body.get());
+    world_.removeRigidBody(ground_.get());
+  }
+
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
+
+  void stepFrame() {
+    const auto dt = static_cast<btScalar>(kFrameSeconds / substeps_);
+    for (int s = 0; s < substeps_; ++s) world_.stepSimulation(dt, 0, dt);
+  }
+
+  AtRest atRest() const {
+    AtRest result;
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const BodySpec& spec = scene_.bodies[i];
+      if (spec.isFixed()) continue;
+      const btRigidBody& body = *bodies_[i];
+      const btVector3& v = body.getLinearVelocity();
+      const btVector3 w =
+          body.getWorldTransform().getBasis().transpose() * body.getAngularVelocity();
+      const btVector3& inertia = body.getLocalInertia();
+      result.kinetic_energy +=
+          0.5 * (spec.mass * static_cast<double>(v.length2()) +
+                 static_cast<double>(inertia.x() * w.x() * w.x() + inertia.y() * w.y() * w.y() +
+                                     inertia.z() * w.z() * w.z()));
+      const btVector3& p = body.getWorldTransform().getOrigin();
+      const bool outside =
+          scene_.inner_half_width > 0.0 &&
+          (std::abs(p.x()) > scene_.inner_half_width || std::abs(p.y()) > scene_.inner_half_width);
+      if (outside || p.z() < scene_.ground.height) ++result.escaped;
+      if (!body.isActive()) ++result.asleep;
+    }
+    if (scene_.top_body >= 0) {
+      const Eigen::Vector3d& start = scene_.bodies[scene_.top_body].position;
+      const btVector3& now = bodies_[scene_.top_body]->getWorldTransform().getOrigin();
+      result.top_drop = start.z() - now.z();
+      result.top_distance = (start - Eigen::Vector3d(now.x(), now.y(), now.z())).norm();
+    }
+    for (int m = 0; m < dispatcher_.getNumManifolds(); ++m) {
+      const btPersistentManifold& manifold = *dispatcher_.getManifoldByIndexInternal(m);
+      result.contacts += manifold.getNumContacts();
+      for (int c = 0; c < manifold.getNumContacts(); ++c) {
+        result.max_penetration =
+            std::max(result.max_penetration,
+                     -static_cast<double>(manifold.getContactPoint(c).getDistance()));
+      }
+    }
+    return result;
+  }
+
+ private:
+  // One shape per distinct size: the pyramid's 5,050 boxes share one.
+  btCollisionShape* shapeFor(const BodySpec& spec) {
+    const auto key = std::make_tuple(spec.shape, spec.half_extents.x(), spec.half_extents.y(),
+                                     spec.half_extents.z(), spec.radius);
+    auto found = shapes_.find(key);
+    if (found == shapes_.end()) {
+      std::unique_ptr<btCollisionShape> shape;
+      if (spec.shape == ShapeType::kSphere) {
+        shape = std::make_unique<btSphereShape>(static_cast<btScalar>(spec.radius));
+      } else {
+        shape = std::make_unique<btBoxShape>(toBullet(spec.half_extents));
+      }
+      found = shapes_.emplace(key, std::move(shape)).first;
+    }
+    return found->second.get();
+  }
+
+  const RigidScene& scene_;
+  const int substeps_;
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_{&configuration_};
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &configuration_};
+  std::map<std::tuple<ShapeType, double, double, double, double>, std::unique_ptr<btCollisionShape>>
+      shapes_;
+  std::unique_ptr<btCollisionShape> ground_shape_;
+  std::unique_ptr<btRigidBody> ground_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;  // in the order of scene_.bodies
+};
+
+void runScene(benchmark::State& state, const RigidScene& scene) {
+  const auto substeps = static_cast<int>(state.range(1));
+  const bool sleeping = state.range(2) != 0;
+  if (hasRestitution(scene)) {
+    state.SkipWithError("restitution other than 0: Bullet combines it differently (product)");
+    return;
+  }
+  state.SetLabel(std::string(btIsDoublePrecision() ? "double" : "float") + ", " + scene.name +
+                 (sleeping ? ", default deactivation" : ", deactivation off"));
+
+  const auto start = std::chrono::steady_clock::now();
+  BulletWorld world(scene, substeps, sleeping);
+  for (int frame = 0; frame < kSettleFrames; ++frame) world.stepFrame();
+  const AtRest at_rest = world.atRest();
+  const std::chrono::duration<double> setup = std::chrono::steady_clock::now() - start;
+
+  for (auto _ : state) {
+    world.stepFrame();
+    benchmark::ClobberMemory();
+  }
+
+  const auto dynamic = std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                     [](const BodySpec& body) { return !body.isFixed(); });
+  state.counters["bodies"] = static_cast<double>(dynamic);
+  state.counters["double_prec"] = btIsDoublePrecision() ? 1.0 : 0.0;
+  state.counters["kinetic_J"] = at_rest.kinetic_energy;
+  state.counters["max_pen_m"] = at_rest.max_penetration;
+  state.counters["contacts"] = at_rest.contacts;
+  state.counters["escaped"] = at_rest.escaped;
+  state.counters["asleep"] = at_rest.asleep;
+  if (scene.top_body >= 0) {
+    state.counters["top_drop_m"] = at_rest.top_drop;
+    state.counters["top_moved_m"] = at_rest.top_distance;
+    state.counters["stood"] = at_rest.top_distance < kStoodTolerance ? 1.0 : 0.0;
+  }
+  state.counters["settle_s"] = setup.count();
+}
+
+// Substeps 1 and 4, deactivation off and Bullet's default; `kFrames` timed frames each.
+template <int kSize, int kFrames>
+void runs(benchmark::internal::Benchmark* b) {
+  for (const int sleeping : {0, 1}) {
+    for (const int substeps : {1, 4}) b->Args({kSize, substeps, sleeping});
+  }
+  b->Iterations(kFrames)->Unit(benchmark::kMillisecond);
+}
+
+void BM_Bullet_RigidPyramid(benchmark::State& state) {
+  runScene(state, pyramid(static_cast<int>(state.range(0))));
+}
+void BM_Bullet_RigidStack(benchmark::State& state) {
+  runScene(state, stack(static_cast<int>(state.range(0))));
+}
+void BM_Bullet_RandomDrop(benchmark::State& state) {
+  runScene(state, randomDrop(static_cast<int>(state.range(0))));
+}
+void BM_Bullet_ParticleRain(benchmark::State& state) {
+  runScene(state, particleRain(static_cast<int>(state.range(0))));
+}
+
+BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>);
+BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<100, 60>);
+BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<10, 600>);
+BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<20, 600>);
+BENCHMARK(BM_Bullet_RandomDrop)->Apply(runs<1000, 300>);
+BENCHMARK(BM_Bullet_ParticleRain)->Apply(runs<kRainDefaultSpheres, 300>);
+
+}  // namespace
+}  // namespace rigid
+}  // namespace bench
+}  // namespace mass_aggregate_sim
+
+BENCHMARK_MAIN();
