@@ -1,9 +1,6 @@
 // The oriented box collider kind (box.h).
 #include "mass_aggregate_sim/engine/collision/box.h"
 
-#include <cmath>
-#include <limits>
-
 #include "engine/collision/geometry.h"
 
 namespace mass_aggregate_sim {
@@ -66,32 +63,10 @@ std::optional<RayShapeHit> ShapeKind<BoxCollider>::raycast(const BoxCollider& bo
   const Vec3 o =
       aligned ? Vec3(origin - box.center) : Vec3(rotation.transpose() * (origin - box.center));
   const Vec3 d = aligned ? direction : Vec3(rotation.transpose() * direction);
-  const Vec3 h = box.half_extents + Vec3::Constant(inflate);
-  if ((o.cwiseAbs().array() < h.array()).all()) return std::nullopt;  // starts inside
-  // Slabs: the ray is inside the box between the last entry and the first exit.
-  Real enter = -std::numeric_limits<Real>::infinity();
-  Real exit = std::numeric_limits<Real>::infinity();
-  int enter_axis = -1;
-  Real enter_sign = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    if (d[k] == 0.0) {
-      if (std::abs(o[k]) > h[k]) return std::nullopt;
-      continue;
-    }
-    const Real near_face = d[k] > 0.0 ? -h[k] : h[k];
-    const Real t_near = (near_face - o[k]) / d[k];
-    const Real t_far = (-near_face - o[k]) / d[k];
-    if (t_near > enter) {
-      enter = t_near;
-      enter_axis = k;
-      enter_sign = d[k] > 0.0 ? -1.0 : 1.0;
-    }
-    exit = std::min(exit, t_far);
-  }
-  if (enter_axis < 0 || enter > exit || enter < 0.0 || enter > max_t) return std::nullopt;
-  Vec3 normal = Vec3::Zero();
-  normal[enter_axis] = enter_sign;
-  return RayShapeHit{enter, rotation * normal};
+  const std::optional<RayShapeHit> hit =
+      rayIntoCentredBox(o, d, max_t, box.half_extents + Vec3::Constant(inflate));
+  if (!hit) return std::nullopt;
+  return RayShapeHit{hit->t, rotation * hit->normal};
 }
 
 ShapeDescription ShapeKind<BoxCollider>::describe(const BoxCollider& box) {

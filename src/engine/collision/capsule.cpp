@@ -30,37 +30,7 @@ std::optional<RayShapeHit> ShapeKind<CapsuleCollider>::raycast(const CapsuleColl
                                                                const Vec3& direction,
                                                                const Real max_t,
                                                                const Real inflate) {
-  const Real radius = capsule.radius + inflate;
-  if ((origin - closestOnSegment(origin, capsule.a, capsule.b)).squaredNorm() <= radius * radius) {
-    return std::nullopt;  // starts inside
-  }
-  // The capsule is the union of its cylinder and two end balls; starting outside all of them,
-  // the first entry into the union is the earliest entry into any part.
-  std::optional<RayShapeHit> best =
-      earlier(rayIntoBall(origin, direction, max_t, capsule.a, radius),
-              rayIntoBall(origin, direction, max_t, capsule.b, radius));
-  const Vec3 axis = capsule.b - capsule.a;
-  const Real axis_squared = axis.squaredNorm();
-  if (axis_squared > 0.0) {
-    // Remove the axial parts: |w + t e| = R with w, e the components of (o - a) and d across the
-    // axis, then keep hits whose axial coordinate lies between the ends.
-    const Vec3 oa = origin - capsule.a;
-    const Vec3 w = oa - axis * (oa.dot(axis) / axis_squared);
-    const Vec3 e = direction - axis * (direction.dot(axis) / axis_squared);
-    const Real a = e.squaredNorm();
-    const Real b = w.dot(e);
-    const Real c = w.squaredNorm() - radius * radius;
-    const Real discriminant = b * b - a * c;
-    if (a > 0.0 && c > 0.0 && b < 0.0 && discriminant >= 0.0) {
-      const Real t = (-b - std::sqrt(discriminant)) / a;
-      const Real along = (oa + t * direction).dot(axis) / axis_squared;
-      if (t >= 0.0 && t <= max_t && along >= 0.0 && along <= 1.0) {
-        const Vec3 normal = (w + t * e) / radius;
-        best = earlier(best, RayShapeHit{t, normal});
-      }
-    }
-  }
-  return best;
+  return rayIntoCapsule(origin, direction, max_t, capsule.a, capsule.b, capsule.radius + inflate);
 }
 
 ShapeDescription ShapeKind<CapsuleCollider>::describe(const CapsuleCollider& capsule) {

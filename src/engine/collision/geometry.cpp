@@ -1,5 +1,7 @@
 #include "engine/collision/geometry.h"
 
+#include <limits>
+
 namespace mass_aggregate_sim {
 namespace engine {
 
@@ -29,6 +31,69 @@ std::optional<RayShapeHit> rayIntoBall(const Vec3& origin, const Vec3& direction
   if (t < 0.0 || t > max_t) return std::nullopt;
   const Vec3 normal = (offset + t * direction) / radius;
   return RayShapeHit{t, radius > 0.0 ? normal : Vec3(-direction)};
+}
+
+std::optional<RayShapeHit> rayIntoCentredBox(const Vec3& o, const Vec3& d, const Real max_t,
+                                             const Vec3& h) {
+  if ((o.cwiseAbs().array() < h.array()).all()) return std::nullopt;  // starts inside
+  // Slabs: the ray is inside the box between the last entry and the first exit.
+  Real enter = -std::numeric_limits<Real>::infinity();
+  Real exit = std::numeric_limits<Real>::infinity();
+  int enter_axis = -1;
+  Real enter_sign = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (std::abs(o[k]) > h[k]) return std::nullopt;
+      continue;
+    }
+    const Real near_face = d[k] > 0.0 ? -h[k] : h[k];
+    const Real t_near = (near_face - o[k]) / d[k];
+    const Real t_far = (-near_face - o[k]) / d[k];
+    if (t_near > enter) {
+      enter = t_near;
+      enter_axis = k;
+      enter_sign = d[k] > 0.0 ? -1.0 : 1.0;
+    }
+    exit = std::min(exit, t_far);
+  }
+  if (enter_axis < 0 || enter > exit || enter < 0.0 || enter > max_t) return std::nullopt;
+  Vec3 normal = Vec3::Zero();
+  normal[enter_axis] = enter_sign;
+  return RayShapeHit{enter, normal};
+}
+
+std::optional<RayShapeHit> rayIntoCapsule(const Vec3& origin, const Vec3& direction,
+                                          const Real max_t, const Vec3& a, const Vec3& b,
+                                          const Real radius) {
+  if ((origin - closestOnSegment(origin, a, b)).squaredNorm() <= radius * radius) {
+    return std::nullopt;  // starts inside
+  }
+  // The capsule is the union of its cylinder and two end balls; starting outside all of them,
+  // the first entry into the union is the earliest entry into any part.
+  std::optional<RayShapeHit> best = earlier(rayIntoBall(origin, direction, max_t, a, radius),
+                                            rayIntoBall(origin, direction, max_t, b, radius));
+  const Vec3 axis = b - a;
+  const Real axis_squared = axis.squaredNorm();
+  if (axis_squared > 0.0) {
+    // Remove the axial parts: |w + t e| = R with w, e the components of (o - a) and d across the
+    // axis, then keep hits whose axial coordinate lies between the ends.
+    const Vec3 oa = origin - a;
+    const Vec3 w = oa - axis * (oa.dot(axis) / axis_squared);
+    const Vec3 e = direction - axis * (direction.dot(axis) / axis_squared);
+    const Real qa = e.squaredNorm();
+    const Real qb = w.dot(e);
+    const Real qc = w.squaredNorm() - radius * radius;
+    const Real discriminant = qb * qb - qa * qc;
+    if (qa > 0.0 && qc > 0.0 && qb < 0.0 && discriminant >= 0.0) {
+      const Real t = (-qb - std::sqrt(discriminant)) / qa;
+      const Real along = (oa + t * direction).dot(axis) / axis_squared;
+      if (t >= 0.0 && t <= max_t && along >= 0.0 && along <= 1.0) {
+        const Vec3 normal = (w + t * e) / radius;
+        best = earlier(best, RayShapeHit{t, normal});
+      }
+    }
+  }
+  return best;
 }
 
 std::optional<Real> sweptSpheresTimeOfImpact(const Vec3& d0, const Vec3& dd,

@@ -29,6 +29,16 @@ std::optional<ShapeContact> sphereAgainstBall(const Vec3& x, Real r, const Vec3&
 std::optional<RayShapeHit> rayIntoBall(const Vec3& origin, const Vec3& direction, Real max_t,
                                        const Vec3& center, Real radius);
 
+// First entry of the ray (unit direction) into the box |x_k| <= h_k about the origin, all in the
+// box's frame; none when it starts inside.
+std::optional<RayShapeHit> rayIntoCentredBox(const Vec3& origin, const Vec3& direction, Real max_t,
+                                             const Vec3& h);
+
+// First entry of the ray (unit direction) into the capsule of the given radius around the segment
+// a-b; none when it starts inside.
+std::optional<RayShapeHit> rayIntoCapsule(const Vec3& origin, const Vec3& direction, Real max_t,
+                                          const Vec3& a, const Vec3& b, Real radius);
+
 // The earlier of two hits (either may be missing).
 inline std::optional<RayShapeHit> earlier(const std::optional<RayShapeHit>& x,
                                           const std::optional<RayShapeHit>& y) {
