@@ -68,11 +68,8 @@ void SimNode::updateDiagnostics() {
 }
 
 void SimNode::publishLoop() {
-  double period = 1.0;
-  nh_.param("diagnostic_period", period, period);
-  if (!(period > 0.0)) period = 1.0;
-  const auto diagnostic_period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period));
+  const auto diagnostic_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(params_.diagnostic_period));
   Clock::time_point next_diagnostics = Clock::now() + diagnostic_period;
   // The startup line goes through rosconsole once rosout listens (what the node logs before
   // rosout has connected never reaches rosout.log), or after 3 s without rosout.

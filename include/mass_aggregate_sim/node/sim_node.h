@@ -45,10 +45,11 @@ namespace mass_aggregate_sim {
 namespace node {
 
 // The ROS adapter. Threads:
-// * the world thread (run()) owns the world: on a fixed-rate wall schedule it applies the queued
-//   requests (RequestQueue) at the step boundary, steps, and hands a frame (a snapshot of what is
-//   published) to the publishing thread at ~publish_rate. A ~step run (service or action) steps
-//   as fast as it can in slices of at most 20 ms, between which requests apply and frames go out.
+// * the world thread (run()) owns the world: it steps on a fixed-rate wall schedule, hands a frame
+//   (a snapshot of what is published) to the publishing thread at ~publish_rate, and sleeps in
+//   between on the request queue, so a request wakes it and is applied at once, between steps. A
+//   ~step run (service or action) steps as fast as it can in slices of at most 20 ms, between which
+//   requests apply and frames go out.
 // * the publishing thread builds and publishes the messages, the action's feedback and result,
 //   and /diagnostics, from the latest frame: the step timer's overruns depend on the step alone.
 // * the spinner thread runs the service, action and reconfigure callbacks: they check and
@@ -160,6 +161,7 @@ class SimNode {
   NodeParams params_;
   std::string scene_name_;
   std::string scene_source_;
+  std::string parameters_;    // describeParameters(): what the parameter server changed
   std::string startup_line_;  // logged by the publishing thread once rosout listens
   double rate_;
   double publish_rate_;
@@ -240,6 +242,10 @@ class SimNode {
   double window_step_cost_sum_ = 0.0;
   double window_step_cost_max_ = 0.0;
   std::uint64_t window_steps_ = 0;
+  // What the last closed window measured, published until the next one closes.
+  double window_real_time_factor_ = 0.0;
+  double window_step_cost_mean_ = 0.0;
+  double window_step_cost_peak_ = 0.0;
 };
 
 }  // namespace node
