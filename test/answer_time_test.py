@@ -11,6 +11,7 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Vector3
 from std_srvs.srv import SetBool
 
@@ -41,6 +42,14 @@ class AnswerTimeTest(unittest.TestCase):
         cls.cond = threading.Condition()
         cls.stats = []
         rospy.Subscriber(NS + '/stats', SimStats, cls.on_stats, queue_size=100)
+        cls.step_rate = []
+        rospy.Subscriber('/diagnostics', DiagnosticArray, cls.on_diagnostics, queue_size=100)
+
+    @classmethod
+    def on_diagnostics(cls, msg):
+        with cls.cond:
+            cls.step_rate.extend(s for s in msg.status
+                                 if s.name == 'mass_aggregate_sim: Step rate')
 
     @classmethod
     def on_stats(cls, msg):
@@ -120,6 +129,33 @@ class AnswerTimeTest(unittest.TestCase):
 
     def test_running(self):
         self.check(False)
+
+    def test_step_rate_status_at_1_hz(self):
+        """Steps at 1 Hz, /diagnostics every 0.5 s: the step rate status is OK at every update
+        (a count of the steps in each 0.5 s period would read 0 and 2 Hz in turn)."""
+        self.assertTrue(self.pause(True).success)
+        with self.cond:
+            seen = len(self.step_rate)
+            self.assertTrue(self.cond.wait_for(lambda: len(self.step_rate) > seen + 1, 10.0))
+            self.assertEqual(self.step_rate[-1].message, 'paused')
+            self.assertEqual(self.step_rate[-1].level, DiagnosticStatus.OK)
+        self.assertTrue(self.pause(False).success)
+        with self.cond:
+            seen = len(self.step_rate)
+        time.sleep(8.0)
+        with self.cond:
+            statuses = self.step_rate[seen:]
+        self.assertGreater(len(statuses), 10)
+        summary = ['%d %s' % (s.level, s.message) for s in statuses]
+        for status in statuses:
+            self.assertEqual(status.level, DiagnosticStatus.OK, summary)
+        # Measured from the third second on (two steps after the resume).
+        measured = [s for s in statuses if 'steps per second' in s.message]
+        self.assertGreater(len(measured), 6, summary)
+        for status in measured:
+            self.assertIn('1.0 of 1.0 steps per second', status.message)
+        values = {v.key: v.value for v in measured[-1].values}
+        self.assertEqual(values['minimum acceptable rate (Hz)'], '0.9')
 
     def test_startup_line_lists_what_differs_from_the_defaults(self):
         """~rate, ~paused and ~publish_rate are set by the .test file: the startup line (through

@@ -264,6 +264,7 @@ void SimNode::fillFrame(const Clock::time_point now) {
   frame.scene_generation = scene_generation_;
   frame.steps_total = steps_total_;
   frame.ticks_total = ticks_total_;
+  frame.last_tick = last_tick_;
 
   SimStats& stats = frame.stats;
   stats.header.stamp = frame.stamp;
@@ -399,6 +400,7 @@ void SimNode::run() {
       if (!paused_) {
         stepOnce();
         ++ticks_total_;
+        last_tick_ = Clock::now();
       }
       // Every tick, paused or not, so nodes on simulated time always hear the clock.
       publishClock();

@@ -92,7 +92,8 @@ class SimNode {
     SimStats stats;
     DiagnosticInputs diagnostics;
     std::uint64_t steps_total = 0;  // steps since start, across resets
-    std::uint64_t ticks_total = 0;  // real-time ticks since start
+    std::uint64_t ticks_total = 0;  // real-time steps since start
+    Clock::time_point last_tick;    // when the last of them was taken
     Clock::time_point taken;
   };
   // An action run's progress, for its feedback.
@@ -211,10 +212,11 @@ class SimNode {
   Clock::time_point next_diagnostics_;
   DiagnosticInputs diagnostic_inputs_;  // what the status functions read (publishing thread)
   bool have_frame_ = false;
-  std::uint64_t diagnostics_steps_ = 0;  // steps_total, ticks_total and overruns of the frame
-  std::uint64_t diagnostics_ticks_ = 0;  // seen at the previous diagnostic update
-  std::uint64_t diagnostics_overruns_ = 0;
-  Clock::time_point diagnostics_taken_;
+  std::uint64_t diagnostics_ticks_ = 0;     // ticks_total and overruns of the frame seen at the
+  std::uint64_t diagnostics_overruns_ = 0;  // previous diagnostic update
+  StepRateWindow step_rate_;
+  bool step_rate_measuring_ = false;  // running in real time at step_rate_hz_ at the last update
+  double step_rate_hz_ = 0.0;
 
   FrameExchange<Frame> frames_;
   std::thread publisher_;
@@ -236,6 +238,7 @@ class SimNode {
   std::uint64_t overruns_ = 0;
   std::uint64_t steps_total_ = 0;
   std::uint64_t ticks_total_ = 0;
+  Clock::time_point last_tick_;
   // Per publish window, for the real-time factor and the step cost.
   Clock::time_point window_start_;
   double window_sim_time_ = 0.0;
