@@ -7,7 +7,9 @@ carries the step it was applied at, the state hash and the configuration at that
 scene hash. The target is paused and reset, its configuration and scene are compared with the
 recording's (a difference is named, e.g. "integrator: target rk4, recorded semi_implicit_euler"),
 then every command is re-issued at its step: the script steps the paused target there with the
-~step action, so wall-clock timing plays no part. A recorded reconfigure is sent to the target's
+~step action, so wall-clock timing plays no part (a gap longer than the target's
+~max_steps_per_request goes as several goals, each within that limit). A recorded reconfigure is
+sent to the target's
 ~set_parameters; pause and step commands are checkpoints (their steps come from the stamps). The
 first command whose state differs is named, with the configuration lines that differ.
 
@@ -40,6 +42,8 @@ SERVICES = {
 }
 CHECKPOINTS = ('pause', 'step')
 WAIT = 60.0  # s of wall time for any one answer
+# The node's ~max_steps_per_request when the parameter is not set: the largest goal it accepts.
+DEFAULT_MAX_STEPS = 100000
 
 
 class ReplayError(RuntimeError):
@@ -100,6 +104,11 @@ class Target:
                 raise ReplayError('could not subscribe to %s/commands' % ns)
             rospy.sleep(0.05)
         self.step = 0
+        # The target refuses a ~step goal of more steps than this: longer gaps are split.
+        self.max_steps = int(rospy.get_param(ns + '/max_steps_per_request', DEFAULT_MAX_STEPS))
+        if self.max_steps < 1:
+            raise ReplayError('%s/max_steps_per_request is %d' % (ns, self.max_steps))
+        self.goals = 0
 
     def _on_command(self, msg):
         with self.cond:
@@ -141,15 +150,19 @@ class Target:
         if step < self.step:
             raise ReplayError('a command stamped step %d, but the target is at %d'
                               % (step, self.step))
-        if step == self.step:
-            return
-        self.action.send_goal(StepGoal(steps=step - self.step))
-        if not self.action.wait_for_result(rospy.Duration(3600.0)):
-            raise ReplayError('no result from the ~step action')
-        result = self.action.get_result()
-        if self.action.get_state() != actionlib.GoalStatus.SUCCEEDED:
-            raise ReplayError('step refused: ' + (result.message if result else 'no result'))
-        self.step = result.step
+        while self.step < step:
+            steps = min(step - self.step, self.max_steps)
+            self.action.send_goal(StepGoal(steps=steps))
+            self.goals += 1
+            if not self.action.wait_for_result(rospy.Duration(3600.0)):
+                raise ReplayError('no result from the ~step action')
+            result = self.action.get_result()
+            if self.action.get_state() != actionlib.GoalStatus.SUCCEEDED:
+                raise ReplayError('step refused: ' + (result.message if result else 'no result'))
+            if result.step != self.step + steps:
+                raise ReplayError('the target took %d steps from step %d to %d, asked for %d'
+                                  % (result.steps_done, self.step, result.step, steps))
+            self.step = result.step
 
     def call(self, command):
         self.forget_echoes()
@@ -214,7 +227,7 @@ def replay(bag_path, source, target_ns):
             echo = target.call(command)
         compare(echo, command)
         last_hash = echo.state_hash
-    return len(commands), commands[-1], last_hash
+    return len(commands), commands[-1], last_hash, target
 
 
 def main():
@@ -227,13 +240,14 @@ def main():
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node('replay_commands', anonymous=True)
     try:
-        count, last, replayed = replay(args.bag, args.source.rstrip('/'),
-                                       args.target.rstrip('/'))
+        count, last, replayed, target = replay(args.bag, args.source.rstrip('/'),
+                                               args.target.rstrip('/'))
     except (ReplayError, rospy.ROSException, rospy.ServiceException) as error:
         print('replay failed: %s' % error)
         return 1
-    print('replayed %d commands to step %d: state hash %d, recorded %d: match'
-          % (count, last.step, replayed, last.state_hash))
+    print('replayed %d commands to step %d: state hash %d, recorded %d: match (%d ~step goals '
+          'of at most %d steps)' % (count, last.step, replayed, last.state_hash, target.goals,
+                                    target.max_steps))
     return 0
 
 

@@ -63,6 +63,29 @@ class DiagnosticsTest(unittest.TestCase):
         values = {v.key: v.value for v in after.values}
         self.assertNotEqual(values['divergence events'], '0')
 
+    def test_step_rate_is_a_frequency_status_against_the_rate(self):
+        """Running, the step rate is measured against ~rate (60 Hz) with its tolerance, and
+        OK; paused again, it reads "paused" at OK, never ERROR."""
+        self.assertTrue(self.sim.pause(False).success)
+        deadline = time.time() + 30.0
+        while True:
+            status = self.status('Step rate')
+            self.assertNotEqual(status.level, DiagnosticStatus.ERROR, status.message)
+            if 'steps per second' in status.message:
+                break
+            self.assertLess(time.time(), deadline, 'no measured step rate: ' + status.message)
+        self.assertEqual(status.level, DiagnosticStatus.OK, status.message)
+        self.assertIn('of 60.0 steps per second', status.message)
+        values = {v.key: v.value for v in status.values}
+        self.assertEqual(float(values['minimum acceptable rate (Hz)']), 54.0)
+        self.assertGreater(int(values['steps in window']), 10)
+        self.assertGreater(float(values['measured step rate (Hz)']), 54.0)
+        self.assertTrue(self.sim.pause(True).success)
+        self.status('Step rate')  # one that may have been taken before the pause
+        paused = self.status('Step rate')
+        self.assertEqual(paused.level, DiagnosticStatus.OK)
+        self.assertEqual(paused.message, 'paused')
+
 
 if __name__ == '__main__':
     rostest.rosrun('mass_aggregate_sim', 'diagnostics', DiagnosticsTest, sys.argv)

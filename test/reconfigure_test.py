@@ -9,6 +9,7 @@ import unittest
 import rospy
 import rostest
 from dynamic_reconfigure.client import Client
+from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
 
 from mass_aggregate_sim.msg import Command
@@ -28,6 +29,12 @@ class ReconfigureTest(unittest.TestCase):
         cls.configuration = []
         rospy.Subscriber(NS + '/commands', Command, cls.on, cls.commands, queue_size=100)
         rospy.Subscriber(NS + '/configuration', String, cls.on, cls.configuration, queue_size=10)
+        # The node's own log messages (no rosout node needed: every node publishes on /rosout).
+        cls.logs = []
+        rosout = rospy.Subscriber('/rosout', Log, cls.on, cls.logs, queue_size=1000)
+        deadline = time.time() + 20.0
+        while rosout.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
 
     @classmethod
     def on(cls, msg, into):
@@ -77,11 +84,18 @@ class ReconfigureTest(unittest.TestCase):
     def test_3_bad_values_are_refused_and_nothing_changes(self):
         before = self.client.get_configuration(timeout=20.0)
         stats = self.sim.stats()
-        for bad in ({'integrator': 'leapfrog'}, {'gravity_x': float('nan')},
-                    {'divergence_policy': 'explode'}):
+        # Each refusal's reason reaches /rosout as the node's WARN, naming the parameter.
+        for bad, reason in (({'integrator': 'leapfrog'}, "integrator: unknown integrator 'leapfrog'"),
+                            ({'gravity_x': float('nan')}, 'gravity: must be finite'),
+                            ({'divergence_policy': 'explode'},
+                             "divergence_policy: unknown policy 'explode'")):
             config = self.client.update_configuration(bad)
             for key in ('integrator', 'gravity_x', 'divergence_policy', 'rate', 'substeps'):
                 self.assertEqual(str(config[key]), str(before[key]), key)
+            self.wait(lambda: any(
+                log.level == Log.WARN and log.name == NS and
+                'reconfigure refused, nothing changed: ' + reason in log.msg
+                for log in self.logs), 'a WARN on /rosout with ' + reason)
         self.assertEqual(rospy.get_param(NS + '/integrator'), before['integrator'])
         after = self.sim.stats()
         self.assertEqual(after.state_hash, stats.state_hash)

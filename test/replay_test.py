@@ -13,6 +13,7 @@ import time
 import unittest
 
 import actionlib
+import rosbag
 import rospkg
 import rospy
 import rostest
@@ -22,6 +23,8 @@ from geometry_msgs.msg import Vector3
 from mass_aggregate_sim.msg import StepAction, StepGoal
 from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
 from sim_client import SimClient, spec
+
+TARGET_LIMIT = 2000  # /replay_target's ~max_steps_per_request (test/replay.test)
 
 
 def vec(x, y, z):
@@ -98,8 +101,10 @@ class ReplayTest(unittest.TestCase):
         # boundary, and the steps it took are recorded.
         feedback = []
         self.action.send_goal(StepGoal(steps=5000000), feedback_cb=feedback.append)
+        # Longer than the replay target's limit on one goal: the replay has to split the gap.
         deadline = time.time() + 30.0
-        while not feedback and time.time() < deadline:
+        while (not feedback or feedback[-1].steps_done < 3 * TARGET_LIMIT) and \
+                time.time() < deadline:
             time.sleep(0.02)
         self.assertTrue(feedback, 'no feedback from the ~step action')
         self.assertTrue(sim.apply_impulse(0, 'spring_5', '', vec(0.5, 0.0, 0.0)).success)
@@ -138,8 +143,18 @@ class ReplayTest(unittest.TestCase):
         final = self.drive()
         self.stop(recorder, bag)
         self.assertGreater(final.commands_applied, 10)
+        with rosbag.Bag(bag) as recorded:
+            steps = sorted(m.step for _, m, _ in recorded.read_messages(
+                topics=['/mass_aggregate_sim/commands']))
+        longest = max(b - a for a, b in zip(steps, steps[1:]))
+        self.assertGreater(longest, 2 * TARGET_LIMIT)
         result = self.replay(bag)
         self.assertEqual(result.returncode, 0, result.stdout)
+        # The longest gap went as several goals, each within the target's limit.
+        found = re.search(r'\((\d+) ~step goals of at most (\d+) steps\)', result.stdout)
+        self.assertIsNotNone(found, result.stdout)
+        self.assertEqual(int(found.group(2)), TARGET_LIMIT)
+        self.assertGreater(int(found.group(1)), longest // TARGET_LIMIT)
         # The replayed node's own final hash, not only the recorded one, must be the driven
         # node's final hash, at the same step.
         found = re.search(r'to step (\d+): state hash (\d+), recorded (\d+): match', result.stdout)

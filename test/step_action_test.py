@@ -42,7 +42,12 @@ class StepActionTest(unittest.TestCase):
     def test_feedback_stats_and_services_while_a_long_step_runs(self):
         start = self.sim.stats()
         feedback = []
-        self.action.send_goal(StepGoal(steps=LONG), feedback_cb=feedback.append)
+        arrived = []
+
+        def on_feedback(msg):
+            feedback.append(msg)
+            arrived.append(time.time())
+        self.action.send_goal(StepGoal(steps=LONG), feedback_cb=on_feedback)
         self.wait_for(lambda: len(feedback) >= 3, 30.0, 'feedback from the ~step action')
         self.assertGreater(feedback[-1].steps_done, feedback[0].steps_done)
         self.assertEqual(feedback[-1].step, start.step + feedback[-1].steps_done)
@@ -62,6 +67,13 @@ class StepActionTest(unittest.TestCase):
         refused = self.sim.step(5)
         self.assertFalse(refused.success)
         self.assertIn('another step run is under way', refused.message)
+        # Feedback came at ~publish_rate (half of it on a loaded machine at least) over the run,
+        # not only at its start.
+        last = time.time()
+        rate = (len(arrived) - 1) / (last - arrived[0])
+        self.assertGreater(rate, 0.5 * PUBLISH_RATE, '%d feedbacks in %.1f s'
+                           % (len(arrived), last - arrived[0]))
+        self.assertGreater(arrived[-1], last - 1.0)  # still arriving at the end
         state, result = self.cancel_and_wait()
         self.assertEqual(state, actionlib.GoalStatus.PREEMPTED)
         self.assertGreater(result.steps_done, feedback[-1].steps_done - 1)

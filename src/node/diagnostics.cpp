@@ -10,6 +10,14 @@ namespace {
 using diagnostic_msgs::DiagnosticStatus;
 using diagnostic_updater::DiagnosticStatusWrapper;
 
+// Step rate: OK from this fraction of ~rate, WARN from kStepRateWarn, ERROR below.
+constexpr double kStepRateTolerance = 0.9;
+constexpr double kStepRateWarn = 0.5;
+
+double seconds(const StepRateWindow::Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
 std::string format(const char* pattern, const double value) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, value);
@@ -19,6 +27,10 @@ std::string format(const char* pattern, const double value) {
 void addTiming(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
   out.add("target rate (Hz)", in.rate);
   out.add("measured step rate (Hz)", in.step_rate);
+  out.add("steps in window", in.window_steps);
+  out.add("duration of window (s)", in.window_seconds);
+  out.add("minimum acceptable rate (Hz)", kStepRateTolerance * in.rate);
+  out.add("time since the last step (s)", in.since_last_step);
   out.add("real-time factor", in.real_time_factor);
   out.add("step cost mean (ms)", 1e3 * in.step_cost_mean);
   out.add("step cost max (ms)", 1e3 * in.step_cost_max);
@@ -28,6 +40,34 @@ void addTiming(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
 }
 
 }  // namespace
+
+void StepRateWindow::restart(const Clock::time_point now) {
+  samples_.clear();
+  restarted_ = now;
+}
+
+void StepRateWindow::add(const std::uint64_t steps, const Clock::time_point last_step,
+                         const Clock::time_point now, const Clock::duration horizon) {
+  // A last step from before the restart would stretch the window over the pause.
+  if (steps == 0 || last_step < restarted_) return;
+  if (!samples_.empty() && samples_.back().steps == steps) return;
+  samples_.push_back(Sample{steps, last_step, now});
+  // Keep the newest sample that is at least `horizon` old as the window's start.
+  while (samples_.size() > 2 && samples_[1].at <= now - horizon) samples_.pop_front();
+}
+
+void StepRateWindow::measure(const Clock::time_point now, DiagnosticInputs& out) const {
+  out.step_rate = 0.0;
+  out.window_steps = 0;
+  out.window_seconds = 0.0;
+  out.since_last_step = seconds(now - (samples_.empty() ? restarted_ : samples_.back().last_step));
+  if (samples_.size() < 2) return;
+  const Sample& first = samples_.front();
+  const Sample& last = samples_.back();
+  out.window_steps = last.steps - first.steps;
+  out.window_seconds = seconds(last.last_step - first.last_step);
+  if (out.window_seconds > 0.0) out.step_rate = out.window_steps / out.window_seconds;
+}
 
 void stepRateStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
   addTiming(in, out);
@@ -39,13 +79,23 @@ void stepRateStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
     out.summary(DiagnosticStatus::OK, "paused");
     return;
   }
+  if (in.since_last_step > in.stall_after) {
+    out.summary(DiagnosticStatus::ERROR, "no step for " + format("%.1f", in.since_last_step) +
+                                             " s (~rate " + format("%.1f", in.rate) + " Hz)");
+    return;
+  }
+  if (in.window_steps == 0) {
+    out.summary(DiagnosticStatus::OK,
+                "measuring the step rate (~rate " + format("%.1f", in.rate) + " Hz)");
+    return;
+  }
   const double ratio = in.rate > 0.0 ? in.step_rate / in.rate : 0.0;
   const std::string text = format("%.1f", in.step_rate) + " of " + format("%.1f", in.rate) +
                            " steps per second (real-time factor " +
                            format("%.2f", in.real_time_factor) + ")";
-  if (ratio >= 0.9) {
+  if (ratio >= kStepRateTolerance) {
     out.summary(DiagnosticStatus::OK, text);
-  } else if (ratio >= 0.5) {
+  } else if (ratio >= kStepRateWarn) {
     out.summary(DiagnosticStatus::WARN, "below ~rate: " + text);
   } else {
     out.summary(DiagnosticStatus::ERROR, "far below ~rate: " + text);

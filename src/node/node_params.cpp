@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/integrators/integrator.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 
 namespace mass_aggregate_sim {
@@ -16,6 +18,7 @@ using engine::Status;
 using engine::Vec3;
 
 Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
+  NodeParams p;
   for (const auto& [name, type] : std::initializer_list<std::pair<const char*, ParamType>>{
            {"publish_rate", ParamType::kNumber},
            {"frame_id", ParamType::kString},
@@ -29,6 +32,7 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
            {"max_service_steps", ParamType::kInt},
            {"max_links", ParamType::kInt},
            {"max_sustained_forces", ParamType::kInt},
+           {"diagnostic_period", ParamType::kNumber},
            {"rate", ParamType::kNumber},
            {"substeps", ParamType::kInt},
            {"integrator", ParamType::kString},
@@ -37,9 +41,10 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
     if (!nh.getParam(name, value)) continue;
     const Status typed = checkParamType(name, value, type);
     if (!typed) return typed;
+    p.given.push_back(name);
   }
-  NodeParams p;
   nh.param("publish_rate", p.publish_rate, p.publish_rate);
+  nh.param("diagnostic_period", p.diagnostic_period, p.diagnostic_period);
   nh.param("frame_id", p.frame_id, p.frame_id);
   nh.param("paused", p.paused, p.paused);
   nh.param("publish_clock", p.publish_clock, p.publish_clock);
@@ -58,6 +63,9 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   nh.param("max_sustained_forces", max_sustained, max_sustained);
   if (!(p.publish_rate > 0.0 && p.publish_rate <= 1000.0)) {
     return Status::error("~publish_rate: must be in (0, 1000] Hz");
+  }
+  if (!(p.diagnostic_period > 0.0 && p.diagnostic_period <= 3600.0)) {
+    return Status::error("~diagnostic_period: must be in (0, 3600] s");
   }
   if (p.frame_id.empty()) return Status::error("~frame_id: must not be empty");
   if (!(p.default_radius >= 0.0 && p.default_radius <= kMaxRadius)) {
@@ -91,6 +99,74 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   p.limits.max_sustained_forces = static_cast<std::size_t>(max_sustained);
   p.limits.world_frame = p.frame_id;
   return p;
+}
+
+namespace {
+
+std::string number(const double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+std::string vector(const Vec3& v) {
+  return "[" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + "]";
+}
+
+std::string flag(const bool value) { return value ? "true" : "false"; }
+
+}  // namespace
+
+std::string describeParameters(const NodeParams& p, const LoadedScene& scene) {
+  const NodeParams d;
+  std::string out;
+  const auto item = [&](const char* name, const bool differs, const std::string& value,
+                        const std::string& instead) {
+    if (!differs || std::find(p.given.begin(), p.given.end(), name) == p.given.end()) return;
+    if (!out.empty()) out += ", ";
+    out += std::string("~") + name + " = " + value + " (" + instead + ")";
+  };
+  const auto node = [](const std::string& value) { return "default: " + value; };
+  const SceneStepSettings& own = scene.own;
+  const auto from = [](const bool given, const std::string& value) {
+    return (given ? "scene: " : "default: ") + value;
+  };
+  const engine::WorldConfig& config = scene.world.config();
+  const auto own_integrator = engine::parseIntegrator(own.integrator);
+  item("rate", scene.rate != own.rate, number(scene.rate), from(own.rate_given, number(own.rate)));
+  item("substeps", config.substeps != own.substeps, std::to_string(config.substeps),
+       from(own.substeps_given, std::to_string(own.substeps)));
+  item("integrator", !own_integrator || *own_integrator != config.integrator,
+       engine::integratorName(config.integrator), from(own.integrator_given, own.integrator));
+  item("gravity", config.gravity != own.gravity, vector(config.gravity),
+       from(own.gravity_given, vector(own.gravity)));
+  item("publish_rate", p.publish_rate != d.publish_rate, number(p.publish_rate),
+       node(number(d.publish_rate)));
+  item("paused", p.paused != d.paused, flag(p.paused), node(flag(d.paused)));
+  item("publish_clock", p.publish_clock != d.publish_clock, flag(p.publish_clock),
+       node(flag(d.publish_clock)));
+  item("publish_tf", p.publish_tf != d.publish_tf, flag(p.publish_tf), node(flag(d.publish_tf)));
+  item("frame_id", p.frame_id != d.frame_id, quoteInput(p.frame_id), node(quoteInput(d.frame_id)));
+  item("default_radius", p.default_radius != d.default_radius, number(p.default_radius),
+       node(number(d.default_radius)));
+  item("tension_scale", p.tension_scale != d.tension_scale, number(p.tension_scale),
+       node(number(d.tension_scale)));
+  item("diagnostic_period", p.diagnostic_period != d.diagnostic_period, number(p.diagnostic_period),
+       node(number(d.diagnostic_period)));
+  const SimulationLimits& l = p.limits;
+  const SimulationLimits& dl = d.limits;
+  item("max_particles", l.max_particles != dl.max_particles, std::to_string(l.max_particles),
+       node(std::to_string(dl.max_particles)));
+  item("max_steps_per_request", l.max_steps_per_request != dl.max_steps_per_request,
+       std::to_string(l.max_steps_per_request), node(std::to_string(dl.max_steps_per_request)));
+  const std::uint32_t service_default = std::min(d.max_service_steps, l.max_steps_per_request);
+  item("max_service_steps", p.max_service_steps != service_default,
+       std::to_string(p.max_service_steps), node(std::to_string(service_default)));
+  item("max_links", l.max_links != dl.max_links, std::to_string(l.max_links),
+       node(std::to_string(dl.max_links)));
+  item("max_sustained_forces", l.max_sustained_forces != dl.max_sustained_forces,
+       std::to_string(l.max_sustained_forces), node(std::to_string(dl.max_sustained_forces)));
+  return out;
 }
 
 Result<LoadedScene> readScene(ros::NodeHandle& nh, const NodeParams& params) {

@@ -12,16 +12,26 @@ bool RequestQueue::run(std::function<void()> job) {
     if (stopped_) return false;
     jobs_.push_back(queued);
   }
+  queued_.notify_one();
   return done.get();
 }
 
 bool RequestQueue::post(std::function<void()> job) {
   auto queued = std::make_shared<Job>();
   queued->apply = std::move(job);
-  const std::lock_guard<std::mutex> lock(mutex_);
-  if (stopped_) return false;
-  jobs_.push_back(queued);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stopped_) return false;
+    jobs_.push_back(queued);
+  }
+  queued_.notify_one();
   return true;
+}
+
+bool RequestQueue::waitUntil(const std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  queued_.wait_until(lock, deadline, [this] { return !jobs_.empty() || stopped_; });
+  return !jobs_.empty();
 }
 
 void RequestQueue::drain() {
@@ -43,6 +53,7 @@ void RequestQueue::stop() {
     stopped_ = true;
     jobs.swap(jobs_);
   }
+  queued_.notify_all();
   for (auto& job : jobs) job->done.set_value(false);
 }
 

@@ -97,6 +97,8 @@ class SceneBuilder {
       if (!(*dt > 0.0)) throw ParamError(rate_key, "must be > 0 s");
       loaded.rate = 1.0 / *dt;
     }
+    loaded.own.rate = loaded.rate;
+    loaded.own.rate_given = has(scene, "rate") || has(scene, "dt");
     if (overrides_.rate) {
       loaded.rate = *overrides_.rate;
       rate_key = "~rate";
@@ -107,14 +109,17 @@ class SceneBuilder {
     }
     config.dt = dt ? *dt : 1.0 / loaded.rate;
     config.max_frame_time = std::max(config.max_frame_time, config.dt);
-    config.substeps = overrides_.substeps ? *overrides_.substeps : intOr(scene, key, "substeps", 1);
+    loaded.own.substeps = intOr(scene, key, "substeps", 1);
+    loaded.own.substeps_given = has(scene, "substeps");
+    config.substeps = overrides_.substeps ? *overrides_.substeps : loaded.own.substeps;
     if (config.substeps < 1 || config.substeps > 1000) {
       throw ParamError(overrides_.substeps ? "~substeps" : key + ".substeps",
                        "must be in [1, 1000]");
     }
-    const std::string integrator = overrides_.integrator
-                                       ? *overrides_.integrator
-                                       : stringOr(scene, key, "integrator", "semi_implicit_euler");
+    loaded.own.integrator = stringOr(scene, key, "integrator", "semi_implicit_euler");
+    loaded.own.integrator_given = has(scene, "integrator");
+    const std::string integrator =
+        overrides_.integrator ? *overrides_.integrator : loaded.own.integrator;
     const auto parsed = engine::parseIntegrator(integrator);
     if (!parsed) {
       throw ParamError(overrides_.integrator ? "~integrator" : key + ".integrator",
@@ -122,8 +127,9 @@ class SceneBuilder {
                            " (known: " + engine::integratorNames() + ")");
     }
     config.integrator = *parsed;
-    config.gravity =
-        overrides_.gravity ? *overrides_.gravity : vec3Or(scene, key, "gravity", kDefaultGravity);
+    loaded.own.gravity = vec3Or(scene, key, "gravity", kDefaultGravity);
+    loaded.own.gravity_given = has(scene, "gravity");
+    config.gravity = overrides_.gravity ? *overrides_.gravity : loaded.own.gravity;
     const engine::Status gravity =
         checkVector(config.gravity, kMaxAcceleration, "gravity", "m/s^2");
     if (!gravity) {

@@ -23,6 +23,13 @@ namespace {
 
 // A ~step run yields to requests and publishing at least this often.
 constexpr std::chrono::milliseconds kRunSlice(20);
+// The longest the world thread sleeps before it looks at ros::ok() again.
+constexpr std::chrono::milliseconds kShutdownCheck(100);
+
+std::chrono::steady_clock::duration periodOf(const double hz) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(1.0 / hz));
+}
 
 }  // namespace
 
@@ -30,6 +37,7 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
     : params_(params),
       scene_name_(scene.name),
       scene_source_(scene.source),
+      parameters_(describeParameters(params, scene)),
       rate_(scene.rate),
       publish_rate_(params.publish_rate),
       sim_(scene.world, params.limits),
@@ -256,6 +264,7 @@ void SimNode::fillFrame(const Clock::time_point now) {
   frame.scene_generation = scene_generation_;
   frame.steps_total = steps_total_;
   frame.ticks_total = ticks_total_;
+  frame.last_tick = last_tick_;
 
   SimStats& stats = frame.stats;
   stats.header.stamp = frame.stamp;
@@ -264,11 +273,20 @@ void SimNode::fillFrame(const Clock::time_point now) {
   stats.time = world.time();
   stats.paused = paused_;
   stats.rate = rate_;
-  const double wall = std::chrono::duration<double>(now - window_start_).count();
-  const double sim_advanced = clock_offset_ + world.time() - window_sim_time_;
-  stats.real_time_factor = wall > 0.0 ? sim_advanced / wall : 0.0;
-  stats.step_cost_mean = window_steps_ > 0 ? window_step_cost_sum_ / window_steps_ : 0.0;
-  stats.step_cost_max = window_step_cost_max_;
+  // A window closes at the first frame with a step in it (or at every frame when nothing steps):
+  // below ~publish_rate most frames fall between two steps, and a window of one of them would
+  // read a real-time factor of 0 or of rate / publish_rate times too much.
+  const bool close_window = window_steps_ > 0 || (paused_ && !run_);
+  if (close_window) {
+    const double wall = std::chrono::duration<double>(now - window_start_).count();
+    const double sim_advanced = clock_offset_ + world.time() - window_sim_time_;
+    window_real_time_factor_ = wall > 0.0 ? sim_advanced / wall : 0.0;
+    window_step_cost_mean_ = window_steps_ > 0 ? window_step_cost_sum_ / window_steps_ : 0.0;
+    window_step_cost_peak_ = window_step_cost_max_;
+  }
+  stats.real_time_factor = window_real_time_factor_;
+  stats.step_cost_mean = window_step_cost_mean_;
+  stats.step_cost_max = window_step_cost_peak_;
   stats.overruns = overruns_;
   stats.publish_cost = last_publish_cost_.load();
   stats.frame_cost = last_frame_cost_;
@@ -329,11 +347,13 @@ void SimNode::fillFrame(const Clock::time_point now) {
   d.sustained_forces = sim_.sustainedForceCount();
   d.max_sustained_forces = params_.limits.max_sustained_forces;
 
-  window_start_ = now;
-  window_sim_time_ = clock_offset_ + world.time();
-  window_step_cost_sum_ = 0.0;
-  window_step_cost_max_ = 0.0;
-  window_steps_ = 0;
+  if (close_window) {
+    window_start_ = now;
+    window_sim_time_ = clock_offset_ + world.time();
+    window_step_cost_sum_ = 0.0;
+    window_step_cost_max_ = 0.0;
+    window_steps_ = 0;
+  }
   frames_.publish();
   last_frame_cost_ = std::chrono::duration<double>(Clock::now() - now).count();
 }
@@ -351,25 +371,41 @@ void SimNode::run() {
       scene_name_.c_str(), scene_source_.c_str(), sim_.world().particles().size(),
       sim_.world().generators().size(), rate_, paused_ ? ", paused" : "",
       static_cast<unsigned long>(scene_hash_));
-  startup_line_ = startup;
+  // What an earlier launch or reconfigure left on the master is read as well (a bare rosrun
+  // does not clear it): named here, so it is never silent.
+  startup_line_ = std::string(startup) + "; " +
+                  (parameters_.empty()
+                       ? "no parameter on the parameter server changes a default"
+                       : "from the parameter server, differing from the defaults: " + parameters_);
   publisher_ = std::thread([this] { publishLoop(); });
-  Clock::time_point next = Clock::now();
-  Clock::time_point next_publish = next;
-  window_start_ = next;
+  Clock::time_point next_tick = Clock::now();
+  Clock::time_point next_publish = next_tick;
+  window_start_ = next_tick;
+  double tick_rate = rate_;
   while (ros::ok()) {
-    // Requests first: they are applied at the boundary before the step.
+    // Requests first: they are applied at the step boundary, as soon as they arrive.
     queue_.drain();
+    if (rate_ != tick_rate) {
+      // A new ~rate counts from the last tick, not after a period of the old one (up to 10 s).
+      next_tick += periodOf(rate_) - periodOf(tick_rate);
+      tick_rate = rate_;
+    }
+    const Clock::duration publish_period = periodOf(publish_rate_);
     const Clock::time_point tick = Clock::now();
-    const auto publish_period = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(1.0 / publish_rate_));
+    bool ticked = false;
     if (run_) {
       runSlice(tick + std::min<Clock::duration>(kRunSlice, publish_period));
-    } else if (!paused_) {
-      stepOnce();
-      ++ticks_total_;
+      publishClock();
+    } else if (tick >= next_tick) {
+      if (!paused_) {
+        stepOnce();
+        ++ticks_total_;
+        last_tick_ = Clock::now();
+      }
+      // Every tick, paused or not, so nodes on simulated time always hear the clock.
+      publishClock();
+      ticked = true;
     }
-    // Every tick, paused or not, so nodes on simulated time always hear the clock.
-    publishClock();
     Clock::time_point now = Clock::now();
     if (now >= next_publish) {
       fillFrame(now);
@@ -379,19 +415,22 @@ void SimNode::run() {
     now = Clock::now();
     if (run_) {
       // A run steps as fast as it can; the real-time schedule starts again when it ends.
-      next = now;
+      next_tick = now;
       continue;
     }
-    const auto period =
-        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_));
-    next += period;
-    if (now > next) {
-      // Late: count it and start again from now rather than stepping faster to catch up, so the
-      // debt never grows; the real-time factor shows the loss.
-      if (!paused_) ++overruns_;
-      next = now;
+    if (ticked) {
+      next_tick += periodOf(rate_);
+      if (now > next_tick) {
+        // Late: count it and start again from now rather than stepping faster to catch up, so
+        // the debt never grows; the real-time factor shows the loss.
+        if (!paused_) ++overruns_;
+        next_tick = now;
+      }
     }
-    std::this_thread::sleep_until(next);
+    // Sleeps until the next tick or frame, or until a request arrives: a request never waits
+    // for the tick (at ~rate 0.1 Hz that would be 10 s). Wakes at least every kShutdownCheck to
+    // see ros::ok().
+    queue_.waitUntil(std::min({next_tick, next_publish, now + kShutdownCheck}));
   }
   finishRun(StepOutcome::kAborted, "the node is shutting down");
   queue_.stop();

@@ -55,24 +55,30 @@ void SimNode::updateDiagnostics() {
   const Frame& frame = frames_.front();
   DiagnosticInputs& d = diagnostic_inputs_;
   d = frame.diagnostics;
-  const double wall = std::chrono::duration<double>(frame.taken - diagnostics_taken_).count();
-  d.step_rate =
-      wall > 0.0 ? static_cast<double>(frame.steps_total - diagnostics_steps_) / wall : 0.0;
+  // The step rate is measured while the node steps in real time at one ~rate; a pause, a ~step
+  // run or a new ~rate starts the measurement again.
+  const Clock::time_point now = Clock::now();
+  const bool measuring = !d.paused && !d.stepping_run;
+  if (measuring != step_rate_measuring_ || d.rate != step_rate_hz_) step_rate_.restart(now);
+  step_rate_measuring_ = measuring;
+  step_rate_hz_ = d.rate;
+  const double period = params_.diagnostic_period;
+  const double horizon = std::max(5.0 * period, 2.5 / d.rate);
+  step_rate_.add(
+      frame.ticks_total, frame.last_tick, now,
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(horizon)));
+  step_rate_.measure(now, d);
+  d.stall_after = std::max(2.0 / d.rate, 2.0 * period);
   d.ticks = frame.ticks_total - diagnostics_ticks_;
   d.overruns = frame.stats.overruns - diagnostics_overruns_;
-  diagnostics_taken_ = frame.taken;
-  diagnostics_steps_ = frame.steps_total;
   diagnostics_ticks_ = frame.ticks_total;
   diagnostics_overruns_ = frame.stats.overruns;
   diagnostics_.force_update();
 }
 
 void SimNode::publishLoop() {
-  double period = 1.0;
-  nh_.param("diagnostic_period", period, period);
-  if (!(period > 0.0)) period = 1.0;
-  const auto diagnostic_period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period));
+  const auto diagnostic_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(params_.diagnostic_period));
   Clock::time_point next_diagnostics = Clock::now() + diagnostic_period;
   // The startup line goes through rosconsole once rosout listens (what the node logs before
   // rosout has connected never reaches rosout.log), or after 3 s without rosout.
@@ -89,8 +95,6 @@ void SimNode::publishLoop() {
     if (fresh) {
       const Clock::time_point start = Clock::now();
       if (!have_frame_) {
-        diagnostics_taken_ = frames_.front().taken;
-        diagnostics_steps_ = frames_.front().steps_total;
         diagnostics_ticks_ = frames_.front().ticks_total;
         diagnostics_overruns_ = frames_.front().stats.overruns;
         have_frame_ = true;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+
 namespace mass_aggregate_sim {
 namespace node {
 namespace {
@@ -20,6 +23,10 @@ DiagnosticInputs running(const double step_rate) {
   DiagnosticInputs in;
   in.rate = 100.0;
   in.step_rate = step_rate;
+  in.window_steps = 500;
+  in.window_seconds = 500 / step_rate;
+  in.since_last_step = 0.01;
+  in.stall_after = 2.0;
   in.ticks = 100;
   in.step_cost_mean = 0.001;
   return in;
@@ -36,6 +43,69 @@ TEST(DiagnosticsTest, StepRateAgainstTheTarget) {
   paused.stepping_run = true;
   paused.step_rate = 5000.0;
   EXPECT_EQ(run(stepRateStatus, paused).level, DiagnosticStatus::OK);
+}
+
+TEST(DiagnosticsTest, StepRateStallIsAnErrorMeasuringIsNot) {
+  DiagnosticInputs in = running(100.0);
+  in.since_last_step = 2.5;
+  const auto stalled = run(stepRateStatus, in);
+  EXPECT_EQ(stalled.level, DiagnosticStatus::ERROR);
+  EXPECT_EQ(stalled.message, "no step for 2.5 s (~rate 100.0 Hz)");
+  in.paused = true;  // a paused node takes no step: that is no stall
+  EXPECT_EQ(run(stepRateStatus, in).level, DiagnosticStatus::OK);
+  EXPECT_EQ(run(stepRateStatus, in).message, "paused");
+  in = running(0.0);
+  in.window_steps = 0;  // just resumed: fewer than two steps seen
+  const auto measuring = run(stepRateStatus, in);
+  EXPECT_EQ(measuring.level, DiagnosticStatus::OK);
+  EXPECT_NE(measuring.message.find("measuring"), std::string::npos);
+}
+
+// Steps at 1 Hz, diagnostic updates every 0.5 s (~diagnostic_period shorter than a step): a count
+// of the steps in each update's period reads 0 or 2 Hz in turn (ERROR, OK); the window measures
+// between steps and reads 1 Hz at every update.
+TEST(DiagnosticsTest, StepRateWindowIsExactBelowTheUpdateRate) {
+  using Clock = StepRateWindow::Clock;
+  const Clock::time_point t0 = Clock::now();
+  const auto at = [&](const double s) {
+    return t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  StepRateWindow window;
+  window.restart(t0);
+  const auto horizon = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(std::max(5 * 0.5, 2.5 / 1.0)));
+  std::uint64_t steps = 0;
+  double last_step = 0.0;
+  for (int update = 1; update <= 40; ++update) {
+    const double now = 0.5 * update;
+    // Steps at 0.3 s, 1.3 s, 2.3 s, ... (a little late now and then).
+    while (0.3 + steps + 0.01 * (steps % 3) <= now) {
+      last_step = 0.3 + steps + 0.01 * (steps % 3);
+      ++steps;
+    }
+    window.add(steps, at(last_step), at(now), horizon);
+    DiagnosticInputs in;
+    in.rate = 1.0;
+    in.stall_after = 2.0;
+    window.measure(at(now), in);
+    if (now < 2.5) continue;  // two steps seen: from then on, a verdict
+    EXPECT_GE(in.window_steps, 2u) << now;
+    EXPECT_NEAR(in.step_rate, 1.0, 0.02) << now;
+    EXPECT_LE(in.since_last_step, 1.0) << now;
+    EXPECT_EQ(run(stepRateStatus, in).level, DiagnosticStatus::OK) << now;
+  }
+  // No step for 3 s: a stall, whatever the rate measured before.
+  window.add(steps, at(last_step), at(20.0 + 3.0), horizon);
+  DiagnosticInputs in;
+  in.rate = 1.0;
+  in.stall_after = 2.0;
+  window.measure(at(20.0 + 3.0), in);
+  EXPECT_EQ(run(stepRateStatus, in).level, DiagnosticStatus::ERROR);
+  // After a pause the window starts again: what came before the restart is not counted.
+  window.restart(at(30.0));
+  window.add(steps + 1, at(30.5), at(31.0), horizon);
+  window.measure(at(31.0), in);
+  EXPECT_EQ(in.window_steps, 0u);
 }
 
 TEST(DiagnosticsTest, StepCostAgainstThePeriod) {

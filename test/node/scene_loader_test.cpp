@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mass_aggregate_sim/node/node_params.h"
 #include "yaml_to_xmlrpc.h"
 
 namespace mass_aggregate_sim {
@@ -101,6 +102,30 @@ TEST(SceneLoaderTest, OverridesWinOverTheScene) {
   EXPECT_EQ(loaded.value().world.config().substeps, 2);
   EXPECT_EQ(loaded.value().world.config().integrator, engine::Integrator::kVelocityVerlet);
   EXPECT_EQ(loaded.value().world.config().gravity, Vec3(0, -1, 0));
+}
+
+TEST(SceneLoaderTest, StartupLineNamesTheParametersThatChangedSomething) {
+  SceneOverrides overrides;
+  overrides.rate = 1.0;
+  overrides.substeps = 4;  // what the scene says: changes nothing
+  overrides.integrator = "rk4";
+  const auto loaded = load("{rate: 100, substeps: 4}", overrides);
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  NodeParams params;
+  params.paused = true;
+  params.publish_rate = 20.0;
+  params.frame_id = "world";  // given, but the default
+  params.limits.max_steps_per_request = 500;
+  params.max_service_steps = 500;  // the default when ~max_steps_per_request is below 1000
+  params.given = {"rate", "substeps", "integrator", "paused", "publish_rate", "frame_id",
+                  "max_steps_per_request"};
+  EXPECT_EQ(describeParameters(params, loaded.value()),
+            "~rate = 1 (scene: 100), ~integrator = rk4 (default: semi_implicit_euler), "
+            "~publish_rate = 20 (default: 30), ~paused = true (default: false), "
+            "~max_steps_per_request = 500 (default: 100000)");
+  // Not on the parameter server: not named, even when it differs (the scene's own value).
+  params.given.clear();
+  EXPECT_EQ(describeParameters(params, loaded.value()), "");
 }
 
 TEST(SceneLoaderTest, LineIsEvenlySpacedNamedFixedAndLinked) {

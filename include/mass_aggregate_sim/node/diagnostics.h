@@ -2,8 +2,10 @@
 
 #include <diagnostic_updater/DiagnosticStatusWrapper.h>
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <string>
 
 #include "mass_aggregate_sim/engine/collision/collision_settings.h"
@@ -13,12 +15,16 @@ namespace mass_aggregate_sim {
 namespace node {
 
 // What /diagnostics reports, gathered by the world thread with each published frame; the step
-// rate and the overruns are over the diagnostic period (1 s of wall time).
+// rate is over a StepRateWindow, the overruns over the diagnostic period (1 s of wall time).
 struct DiagnosticInputs {
   double rate = 60.0;  // Hz, ~rate
   bool paused = false;
-  bool stepping_run = false;  // a ~step service or action run is under way (as fast as it can)
-  double step_rate = 0.0;     // steps per wall second over the period
+  bool stepping_run = false;       // a ~step service or action run is under way (as fast as it can)
+  double step_rate = 0.0;          // real-time steps per wall second over the window
+  std::uint64_t window_steps = 0;  // step intervals the rate is measured over (0: not yet)
+  double window_seconds = 0.0;     // wall time they span
+  double since_last_step = 0.0;    // s of wall time since the last step (or since the restart)
+  double stall_after = 1.0;        // s without a step that mean the node has stalled
   double real_time_factor = 0.0;
   double step_cost_mean = 0.0;  // s
   double step_cost_max = 0.0;   // s
@@ -39,8 +45,39 @@ struct DiagnosticInputs {
   std::size_t max_sustained_forces = 0;
 };
 
+// The step rate as a frequency status against ~rate, on the wall clock: fed at each diagnostic
+// update with the count of real-time steps and the wall time of the last one, it measures the
+// rate between the last steps of two updates, the older at least `horizon` before the newer
+// (the last 5 updates, and at least 2.5 step periods at low ~rate), so the count is exact
+// whatever the phase of the steps against the updates. diagnostic_updater::FrequencyStatus is not
+// used: it reads ros::Time::now(), the node's own simulated /clock under /use_sim_time (always
+// ~rate steps per simulated second, or a window of 0 s without /clock), and counts events per
+// window, which at ~rate 1 Hz or less is 0 or 1 per update.
+class StepRateWindow {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // Forgets what it measured (a pause, a ~step run, a new ~rate): measures from `now` on.
+  void restart(Clock::time_point now);
+  // One update: `steps` real-time steps since start, the last taken at `last_step`.
+  void add(std::uint64_t steps, Clock::time_point last_step, Clock::time_point now,
+           Clock::duration horizon);
+  // Fills step_rate, window_steps, window_seconds and since_last_step.
+  void measure(Clock::time_point now, DiagnosticInputs& out) const;
+
+ private:
+  struct Sample {
+    std::uint64_t steps;
+    Clock::time_point last_step;
+    Clock::time_point at;
+  };
+  std::deque<Sample> samples_;  // only those whose last step came after the restart
+  Clock::time_point restarted_;
+};
+
 // The thresholds (README, Diagnostics):
-// Step rate: paused or in a ~step run: OK; else measured / ~rate >= 0.9 OK, >= 0.5 WARN, ERROR.
+// Step rate: paused or in a ~step run: OK ("paused"); no step for stall_after: ERROR; else
+// measured / ~rate >= 0.9 OK (10 % tolerance), >= 0.5 WARN, below ERROR; before two steps were
+// measured since a restart, OK ("measuring").
 void stepRateStatus(const DiagnosticInputs& in, diagnostic_updater::DiagnosticStatusWrapper& out);
 // Step cost: mean cost / period < 0.8 and overruns <= 1 % of the ticks: OK; mean cost over the
 // period: ERROR (the node cannot keep ~rate); else WARN.

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <deque>
 #include <functional>
 #include <future>
@@ -20,6 +22,10 @@ class RequestQueue {
   bool post(std::function<void()> job);
   // Runs every job queued so far, in arrival order; called by the owner only.
   void drain();
+  // Blocks the owner until a job is queued, the queue stops, or `deadline` passes: the owner
+  // sleeps between its steps here, so a request is applied at once instead of at the next tick.
+  // True when jobs are waiting.
+  bool waitUntil(std::chrono::steady_clock::time_point deadline);
   // Cancels what is queued and refuses whatever comes later.
   void stop();
 
@@ -29,6 +35,7 @@ class RequestQueue {
     std::promise<bool> done;
   };
   std::mutex mutex_;
+  std::condition_variable queued_;
   std::deque<std::shared_ptr<Job>> jobs_;
   bool stopped_ = false;
 };

@@ -22,12 +22,26 @@ struct SceneOverrides {
   std::string world_frame = "world";  // no particle may be named as it (tf would clash)
 };
 
+// A scene's step settings before the node parameters override them: its own value where it
+// gives one (`given`), else the default.
+struct SceneStepSettings {
+  double rate = 60.0;  // Hz
+  int substeps = 1;
+  std::string integrator = "semi_implicit_euler";
+  engine::Vec3 gravity = engine::Vec3(0.0, 0.0, -9.81);  // m/s^2
+  bool rate_given = false;
+  bool substeps_given = false;
+  bool integrator_given = false;
+  bool gravity_given = false;
+};
+
 struct LoadedScene {
   std::string name;
   std::string description;
   // Where it came from, for the startup log line, e.g. "the parameter /mass_aggregate_sim/scene".
   std::string source;
-  double rate = 60.0;  // Hz
+  double rate = 60.0;     // Hz
+  SceneStepSettings own;  // what ~rate, ~substeps, ~integrator and ~gravity overrode
   engine::World world;
 };
 

@@ -45,10 +45,11 @@ namespace mass_aggregate_sim {
 namespace node {
 
 // The ROS adapter. Threads:
-// * the world thread (run()) owns the world: on a fixed-rate wall schedule it applies the queued
-//   requests (RequestQueue) at the step boundary, steps, and hands a frame (a snapshot of what is
-//   published) to the publishing thread at ~publish_rate. A ~step run (service or action) steps
-//   as fast as it can in slices of at most 20 ms, between which requests apply and frames go out.
+// * the world thread (run()) owns the world: it steps on a fixed-rate wall schedule, hands a frame
+//   (a snapshot of what is published) to the publishing thread at ~publish_rate, and sleeps in
+//   between on the request queue, so a request wakes it and is applied at once, between steps. A
+//   ~step run (service or action) steps as fast as it can in slices of at most 20 ms, between which
+//   requests apply and frames go out.
 // * the publishing thread builds and publishes the messages, the action's feedback and result,
 //   and /diagnostics, from the latest frame: the step timer's overruns depend on the step alone.
 // * the spinner thread runs the service, action and reconfigure callbacks: they check and
@@ -91,7 +92,8 @@ class SimNode {
     SimStats stats;
     DiagnosticInputs diagnostics;
     std::uint64_t steps_total = 0;  // steps since start, across resets
-    std::uint64_t ticks_total = 0;  // real-time ticks since start
+    std::uint64_t ticks_total = 0;  // real-time steps since start
+    Clock::time_point last_tick;    // when the last of them was taken
     Clock::time_point taken;
   };
   // An action run's progress, for its feedback.
@@ -160,6 +162,7 @@ class SimNode {
   NodeParams params_;
   std::string scene_name_;
   std::string scene_source_;
+  std::string parameters_;    // describeParameters(): what the parameter server changed
   std::string startup_line_;  // logged by the publishing thread once rosout listens
   double rate_;
   double publish_rate_;
@@ -209,10 +212,11 @@ class SimNode {
   Clock::time_point next_diagnostics_;
   DiagnosticInputs diagnostic_inputs_;  // what the status functions read (publishing thread)
   bool have_frame_ = false;
-  std::uint64_t diagnostics_steps_ = 0;  // steps_total, ticks_total and overruns of the frame
-  std::uint64_t diagnostics_ticks_ = 0;  // seen at the previous diagnostic update
-  std::uint64_t diagnostics_overruns_ = 0;
-  Clock::time_point diagnostics_taken_;
+  std::uint64_t diagnostics_ticks_ = 0;     // ticks_total and overruns of the frame seen at the
+  std::uint64_t diagnostics_overruns_ = 0;  // previous diagnostic update
+  StepRateWindow step_rate_;
+  bool step_rate_measuring_ = false;  // running in real time at step_rate_hz_ at the last update
+  double step_rate_hz_ = 0.0;
 
   FrameExchange<Frame> frames_;
   std::thread publisher_;
@@ -234,12 +238,17 @@ class SimNode {
   std::uint64_t overruns_ = 0;
   std::uint64_t steps_total_ = 0;
   std::uint64_t ticks_total_ = 0;
+  Clock::time_point last_tick_;
   // Per publish window, for the real-time factor and the step cost.
   Clock::time_point window_start_;
   double window_sim_time_ = 0.0;
   double window_step_cost_sum_ = 0.0;
   double window_step_cost_max_ = 0.0;
   std::uint64_t window_steps_ = 0;
+  // What the last closed window measured, published until the next one closes.
+  double window_real_time_factor_ = 0.0;
+  double window_step_cost_mean_ = 0.0;
+  double window_step_cost_peak_ = 0.0;
 };
 
 }  // namespace node
