@@ -2,6 +2,7 @@
 #include "mass_aggregate_sim/engine/collision/box.h"
 
 #include "engine/collision/geometry.h"
+#include "engine/collision/narrowphase/any_shape.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -80,6 +81,18 @@ ShapeDescription ShapeKind<BoxCollider>::describe(const BoxCollider& box) {
   cube.size = 2.0 * box.half_extents;
   d.parts.push_back(cube);
   return d;
+}
+
+std::optional<Aabb> ShapeKind<BoxCollider>::bounds(const BoxCollider& box) {
+  const BoxShape shape{box.half_extents};
+  return BodyShapeKind<BoxShape>::aabb(shape,
+                                       Frame(box.center, box.orientation.toRotationMatrix()));
+}
+
+void ShapeKind<BoxCollider>::bodyContact(const BoxCollider& box, const AnyBodyShape& shape,
+                                         const Frame& frame, const Real margin, Manifold& out) {
+  out = collideAnyWith(shape, frame, BoxShape{box.half_extents},
+                       Frame(box.center, box.orientation.toRotationMatrix()), margin);
 }
 
 }  // namespace engine

@@ -2,6 +2,7 @@
 #include "mass_aggregate_sim/engine/collision/capsule.h"
 
 #include "engine/collision/geometry.h"
+#include "engine/collision/narrowphase/any_shape.h"
 #include "engine/core/checks.h"
 
 namespace mass_aggregate_sim {
@@ -54,6 +55,33 @@ ShapeDescription ShapeKind<CapsuleCollider>::describe(const CapsuleCollider& cap
     d.parts.push_back(ball);
   }
   return d;
+}
+
+namespace {
+
+// The capsule collider as a body capsule: its segment along the frame's z, centred.
+Frame capsuleFrame(const CapsuleCollider& capsule) {
+  const Vec3 axis = capsule.b - capsule.a;
+  const Real length = axis.norm();
+  const Mat3 rotation = length > 0.0
+                            ? Quat::FromTwoVectors(Vec3::UnitZ(), axis / length).toRotationMatrix()
+                            : Mat3::Identity();
+  return Frame(0.5 * (capsule.a + capsule.b), rotation);
+}
+
+}  // namespace
+
+std::optional<Aabb> ShapeKind<CapsuleCollider>::bounds(const CapsuleCollider& capsule) {
+  const Vec3 r = Vec3::Constant(capsule.radius);
+  return Aabb{capsule.a.cwiseMin(capsule.b) - r, capsule.a.cwiseMax(capsule.b) + r};
+}
+
+void ShapeKind<CapsuleCollider>::bodyContact(const CapsuleCollider& capsule,
+                                             const AnyBodyShape& shape, const Frame& frame,
+                                             const Real margin, Manifold& out) {
+  const Real half_length = 0.5 * (capsule.b - capsule.a).norm();
+  out = collideAnyWith(shape, frame, CapsuleShape{capsule.radius, half_length},
+                       capsuleFrame(capsule), margin);
 }
 
 }  // namespace engine

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/collision/geometry.h"
+#include "engine/collision/narrowphase/any_shape.h"
 #include "engine/core/checks.h"
 
 namespace mass_aggregate_sim {
@@ -121,6 +122,66 @@ ShapeDescription ShapeKind<CylinderCollider>::describe(const CylinderCollider& c
   body.size = Vec3(2.0 * cylinder.radius, 2.0 * cylinder.radius, 2.0 * cylinder.half_height);
   d.parts.push_back(body);
   return d;
+}
+
+std::optional<Aabb> ShapeKind<CylinderCollider>::bounds(const CylinderCollider& cylinder) {
+  // Along each world axis k the cylinder reaches h |a_k| + R sqrt(1 - a_k^2) from its centre.
+  const Vec3& a = cylinder.axis;
+  Vec3 reach;
+  for (int k = 0; k < 3; ++k) {
+    reach[k] = cylinder.half_height * std::abs(a[k]) +
+               cylinder.radius * std::sqrt(std::max(0.0, 1.0 - a[k] * a[k]));
+  }
+  return Aabb{cylinder.center - reach, cylinder.center + reach};
+}
+
+void ShapeKind<CylinderCollider>::bodyContact(const CylinderCollider& cylinder,
+                                              const AnyBodyShape& shape, const Frame& frame,
+                                              const Real margin, Manifold& out) {
+  // Exact for a sphere. A box or a capsule meets the cylinder at its sample points, each a sphere
+  // (a box's 8 corners, radius 0; a capsule's two end balls and its middle one): the deepest
+  // sets the normal and at most four points along it are kept. A cylinder's rim poking into the
+  // middle of a box face is missed (README, known limits).
+  struct Sample {
+    Vec3 center;
+    Real radius;
+  };
+  Sample samples[8];
+  int count = 0;
+  if (const auto* sphere = std::get_if<SphereShape>(&shape)) {
+    samples[count++] = Sample{frame.position, sphere->radius};
+  } else if (const auto* box = std::get_if<BoxShape>(&shape)) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 sign((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0,
+                      (corner & 4) ? 1.0 : -1.0);
+      samples[count++] = Sample{frame.apply(box->half_extents.cwiseProduct(sign)), 0.0};
+    }
+  } else if (const auto* capsule = std::get_if<CapsuleShape>(&shape)) {
+    for (const Real t : {-1.0, 0.0, 1.0}) {
+      samples[count++] =
+          Sample{frame.apply(Vec3(0.0, 0.0, t * capsule->half_length)), capsule->radius};
+    }
+  }
+  out = Manifold{};
+  std::optional<ShapeContact> found[8];
+  int deepest = -1;
+  for (int k = 0; k < count; ++k) {
+    found[k] = contact(cylinder, samples[k].center, samples[k].radius, margin);
+    if (found[k] && (deepest < 0 || found[k]->penetration > found[deepest]->penetration)) {
+      deepest = k;
+    }
+  }
+  if (deepest < 0) return;
+  const Vec3 out_of_cylinder = found[deepest]->normal;
+  out.normal = -out_of_cylinder;
+  for (int k = 0; k < count && out.count < Manifold::kMaxPoints; ++k) {
+    if (!found[k] || found[k]->normal.dot(out_of_cylinder) < 0.9) continue;
+    ManifoldPoint& p = out.points[out.count++];
+    p.separation = -found[k]->penetration;
+    p.point =
+        samples[k].center - out_of_cylinder * (samples[k].radius - 0.5 * found[k]->penetration);
+    p.id = static_cast<std::uint32_t>(k);
+  }
 }
 
 }  // namespace engine

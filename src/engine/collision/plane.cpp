@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/collision/geometry.h"
+#include "engine/collision/narrowphase/any_shape.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -49,6 +50,13 @@ ShapeDescription ShapeKind<PlaneCollider>::describe(const PlaneCollider& plane) 
   slab.size = Vec3(40.0, 40.0, 0.01);
   d.parts.push_back(slab);
   return d;
+}
+
+std::optional<Aabb> ShapeKind<PlaneCollider>::bounds(const PlaneCollider&) { return std::nullopt; }
+
+void ShapeKind<PlaneCollider>::bodyContact(const PlaneCollider& plane, const AnyBodyShape& shape,
+                                           const Frame& frame, const Real margin, Manifold& out) {
+  out = collideAnyWithPlane(shape, frame, plane.normal, plane.offset, margin);
 }
 
 }  // namespace engine

@@ -2,6 +2,7 @@
 #include "mass_aggregate_sim/engine/collision/sphere.h"
 
 #include "engine/collision/geometry.h"
+#include "engine/collision/narrowphase/any_shape.h"
 #include "engine/core/checks.h"
 
 namespace mass_aggregate_sim {
@@ -38,6 +39,17 @@ ShapeDescription ShapeKind<SphereCollider>::describe(const SphereCollider& spher
   ball.size = Vec3::Constant(2.0 * sphere.radius);
   d.parts.push_back(ball);
   return d;
+}
+
+std::optional<Aabb> ShapeKind<SphereCollider>::bounds(const SphereCollider& sphere) {
+  const Vec3 r = Vec3::Constant(sphere.radius);
+  return Aabb{sphere.center - r, sphere.center + r};
+}
+
+void ShapeKind<SphereCollider>::bodyContact(const SphereCollider& sphere, const AnyBodyShape& shape,
+                                            const Frame& frame, const Real margin, Manifold& out) {
+  out = collideAnyWith(shape, frame, SphereShape{sphere.radius},
+                       Frame(sphere.center, Mat3::Identity()), margin);
 }
 
 }  // namespace engine

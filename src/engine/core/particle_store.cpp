@@ -38,21 +38,7 @@ Status validateSpec(const ParticleSpec& spec) {
 }
 
 ParticleId ParticleStore::add(const ParticleSpec& spec) {
-  std::uint32_t slot;
-  if (!free_slots_.empty()) {
-    slot = free_slots_.back();
-    free_slots_.pop_back();
-  } else {
-    slot = static_cast<std::uint32_t>(dense_of_slot_.size());
-    dense_of_slot_.push_back(0);
-    generation_of_slot_.push_back(0);
-    slot_live_.push_back(false);
-  }
-  const auto dense = static_cast<std::uint32_t>(size());
-  dense_of_slot_[slot] = dense;
-  slot_live_[slot] = true;
-  slot_of_dense_.push_back(slot);
-
+  const ParticleId id = slots_.add();
   const bool movable = spec.inverse_mass > 0.0;
   pushVec3(position_, spec.position);
   pushVec3(velocity_, movable ? spec.velocity : Vec3::Zero());
@@ -68,30 +54,21 @@ ParticleId ParticleStore::add(const ParticleSpec& spec) {
   name_.push_back(spec.name);
   ++damping_version_;
   ++layout_version_;
-  return ParticleId{slot, generation_of_slot_[slot]};
+  return id;
 }
 
 Status ParticleStore::remove(const ParticleId id) {
-  const auto dense = find(id);
-  if (!dense) return Status::error(describeInvalid(id));
-  const std::size_t last = size() - 1;
-  if (*dense != last) moveDense(last, *dense);
+  if (!find(id)) return Status::error(describeInvalid(id));
+  const auto move = slots_.remove(id);
+  if (move.from != move.to) moveDense(move.from, move.to);
   popDense();
-  slot_live_[id.index] = false;
-  ++generation_of_slot_[id.index];
-  free_slots_.push_back(id.index);
   ++damping_version_;
   ++layout_version_;
   return Status::ok();
 }
 
 void ParticleStore::clear() {
-  for (const std::uint32_t slot : slot_of_dense_) {
-    slot_live_[slot] = false;
-    ++generation_of_slot_[slot];
-    free_slots_.push_back(slot);
-  }
-  slot_of_dense_.clear();
+  slots_.clear();
   for (auto* buffer :
        {&position_, &velocity_, &force_, &acceleration_, &previous_position_, &previous_external_,
         &history_seeded_, &inverse_mass_, &mobility_, &damping_, &radius_}) {
@@ -105,28 +82,13 @@ void ParticleStore::clear() {
 bool ParticleStore::contains(const ParticleId id) const { return find(id).has_value(); }
 
 std::optional<std::size_t> ParticleStore::find(const ParticleId id) const {
-  if (id.index >= slot_live_.size() || !slot_live_[id.index] ||
-      generation_of_slot_[id.index] != id.generation) {
-    return std::nullopt;
-  }
-  return dense_of_slot_[id.index];
+  return slots_.find(id);
 }
 
-ParticleId ParticleStore::idAt(const std::size_t dense) const {
-  const std::uint32_t slot = slot_of_dense_[dense];
-  return ParticleId{slot, generation_of_slot_[slot]};
-}
+ParticleId ParticleStore::idAt(const std::size_t dense) const { return slots_.idAt(dense); }
 
 std::string ParticleStore::describeInvalid(const ParticleId id) const {
-  if (!id.valid() || id.index >= slot_live_.size()) {
-    return "unknown particle id " + id.str() + " (no such slot)";
-  }
-  if (!slot_live_[id.index]) return "stale particle id " + id.str() + " (particle was removed)";
-  if (generation_of_slot_[id.index] != id.generation) {
-    return "stale particle id " + id.str() + " (slot " + std::to_string(id.index) +
-           " now holds generation " + std::to_string(generation_of_slot_[id.index]) + ")";
-  }
-  return "particle id " + id.str() + " is live";
+  return slots_.describeInvalid(id, "particle");
 }
 
 Status ParticleStore::checkReference(const ParticleId id, const char* field) const {
@@ -167,8 +129,6 @@ void ParticleStore::moveDense(const std::size_t from, const std::size_t to) {
     (*buffer)[to] = (*buffer)[from];
   }
   name_[to] = std::move(name_[from]);
-  slot_of_dense_[to] = slot_of_dense_[from];
-  dense_of_slot_[slot_of_dense_[to]] = static_cast<std::uint32_t>(to);
 }
 
 void ParticleStore::popDense() {
@@ -180,7 +140,6 @@ void ParticleStore::popDense() {
     buffer->pop_back();
   }
   name_.pop_back();
-  slot_of_dense_.pop_back();
 }
 
 }  // namespace engine

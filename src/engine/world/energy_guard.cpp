@@ -71,6 +71,28 @@ void detectNonFinite(StepContext& ctx) {
   }
 }
 
+void detectBodyNonFinite(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  const BodyStore& bodies = *ctx.bodies;
+  const Real limit = ctx.body_settings->runaway_speed;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Quat& q = bodies.orientation(i);
+    const bool finite = bodies.position(i).allFinite() && q.coeffs().allFinite() &&
+                        bodies.linearVelocity(i).allFinite() &&
+                        bodies.angularVelocity(i).allFinite();
+    if (!finite) {
+      ctx.reportBodyDivergence(bodies.idAt(i), "body pose or velocity is not finite");
+      return;
+    }
+    if (bodies.linearVelocity(i).norm() > limit) {
+      ctx.reportBodyDivergence(bodies.idAt(i), "body speed " +
+                                                   std::to_string(bodies.linearVelocity(i).norm()) +
+                                                   " m/s beyond the runaway speed");
+      return;
+    }
+  }
+}
+
 void judgeEnergy(StepContext& ctx, const StabilityReport& report, const int substeps_used) {
   GuardState& guard = ctx.guard;
   const StepEnergies energies = energiesAfterStep(ctx, substeps_used);

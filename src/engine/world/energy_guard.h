@@ -17,6 +17,9 @@ bool energyGuardApplies(const StepContext& ctx);
 void judgeEnergy(StepContext& ctx, const StabilityReport& report, int substeps_used);
 // A non-finite position or velocity, reported with the first such particle.
 void detectNonFinite(StepContext& ctx);
+// A body whose pose or velocities are not finite, or that moves faster than the bodies' runaway
+// speed (BodySettings::runaway_speed), reported with the first such body. Checked every step.
+void detectBodyNonFinite(StepContext& ctx);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/bodies/body_stages.h"
+#include "engine/bodies/body_workspace.h"
 #include "engine/collision/contact_stages.h"
 #include "engine/core/damping_flow.h"
 #include "engine/forces/force_evaluation.h"
@@ -18,15 +20,20 @@ namespace engine {
 void World::step() {
   if (paused_) return;
   StepContext ctx = beginStep();
-  for (int s = 0; s < ctx.substeps; ++s) {
-    applyForces(ctx);          // what the force stage needs from the start of the substep
-    integrateVelocities(ctx);  // the integrator: velocities, and positions predicted from them
-    findPairs(ctx);            // candidate particle pairs; swept tests
-    generateContacts(ctx);     // particles against colliders and each other; links
-    solveConstraints(ctx);     // the velocity phase: warm start, impulses, friction
-    integratePositions(ctx);   // positions follow the impulses and are corrected
+  for (ctx.substep = 0; ctx.substep < ctx.substeps; ++ctx.substep) {
+    applyForces(ctx);              // what the force stage needs from the start of the substep
+    integrateVelocities(ctx);      // particles: the integrator (velocities, positions predicted)
+    integrateBodyVelocities(ctx);  // bodies: forces and torques, the gyroscopic term implicit
+    findPairs(ctx);                // candidate particle pairs; swept tests
+    findBodyPairs(ctx);            // first substep: the bodies' tree, candidate pairs
+    generateContacts(ctx);         // particles against colliders and each other; links
+    generateBodyContacts(ctx);     // first substep: body contacts, the step's body rows
+    solveConstraints(ctx);         // particle rows: warm start, impulses, friction
+    solveBodyConstraints(ctx);     // body rows and joints: warm start, one soft pass
+    integratePositions(ctx);       // particles follow the impulses and are corrected
+    integrateBodyPositions(ctx);   // bodies follow their velocities; one pass to relax
   }
-  finalise(ctx);  // external forces cleared, time, the guards, the divergence policy
+  finalise(ctx);  // restitution, bodies written back and put to sleep, time, the guards
 }
 
 namespace {
@@ -63,6 +70,7 @@ void refreshDampingFactors(const ParticleStore& particles, const Integrator inte
 StepContext World::beginStep() {
   const StabilityReport& report = stabilityReport();
   substeps_used_ = report.substeps_used;
+  if (!bodies_.empty()) substeps_used_ = std::max(substeps_used_, body_settings_.substeps);
   StepCaches& caches = *caches_;
   StepContext ctx(
       config_, collision_settings_, particles_, generators_, links_, colliders_, materials_,
@@ -89,11 +97,23 @@ StepContext World::beginStep() {
   refreshDampingFactors(particles_, config_.integrator, ctx.h, caches.damping);
   dropped_this_step_ = 0;
   caches.pass_energies_valid = false;
+  if (!bodies_.empty()) {
+    ctx.bodies = &bodies_;
+    ctx.joints = &joints_;
+    ctx.body_settings = &body_settings_;
+    ctx.body_ws = &*body_ws_;
+    ctx.colliders_version = colliders_version_;
+    // Body contacts move particles after the integrator: the guard's sums come after them.
+    ctx.pass_sums_energies = false;
+  }
+  beginBodyStep(ctx);
   return ctx;
 }
 
 void World::finalise(StepContext& ctx) {
   const std::uint64_t divergences_before = guard_->divergence_count;
+  finaliseBodies(ctx);
+  detectBodyNonFinite(ctx);
   if (has_external_force_) {
     // Held for the step only. Velocity Verlet's cached accelerations never hold them.
     particles_.forces().setZero();

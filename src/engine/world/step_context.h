@@ -12,6 +12,7 @@ namespace mass_aggregate_sim {
 namespace engine {
 
 struct ContactWorkspace;
+struct BodyWorkspace;
 
 // Everything the stages of a step read and write, built once per step by World::beginStep(): the
 // substep h, the particles, the force scene and the force stage, the integrator's state and
@@ -58,6 +59,14 @@ class StepContext {
   GuardState& guard;
   ContactStats& contact_stats;  // of the last substep
   std::size_t& dropped;         // contacts dropped by max_contacts, over the step
+  int substep = 0;  // the substep being taken
+  // Rigid bodies: all null in a world without them (their stages return at once).
+  BodyStore* bodies = nullptr;
+  Joints* joints = nullptr;
+  const BodySettings* body_settings = nullptr;
+  BodyWorkspace* body_ws = nullptr;
+  // Changes whenever a collider is added or removed (the bodies' broadphase holds them).
+  std::uint64_t colliders_version = 0;
   // The world has colliders, links or colliding particles: the contact stages run.
   bool contacts_active = false;
   // The energy guard judges this step.
@@ -75,7 +84,11 @@ class StepContext {
   }
   // Records a divergence found during the step.
   void reportDivergence(const ParticleId particle, const std::string& what) {
-    guard.last_divergence = DivergenceEvent{step, time, particle, what};
+    guard.last_divergence = DivergenceEvent{step, time, particle, BodyId{}, what};
+    ++guard.divergence_count;
+  }
+  void reportBodyDivergence(const BodyId body, const std::string& what) {
+    guard.last_divergence = DivergenceEvent{step, time, ParticleId{}, body, what};
     ++guard.divergence_count;
   }
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/bodies/body_workspace.h"
 #include "engine/collision/geometry.h"
 #include "engine/core/damping_flow.h"
 #include "engine/core/state_hash.h"
@@ -85,6 +86,13 @@ Status World::removeParticle(const ParticleId id) {
   links_.forEach([&](auto& kind) {
     using Kind = typename std::decay_t<decltype(kind)>::value_type;
     eraseReferencing(kind, LinkKind<Kind>::refersTo);
+  });
+  joints_.forEach([&](auto& kind) {
+    kind.erase(std::remove_if(kind.begin(), kind.end(),
+                              [&](const auto& joint) {
+                                return joint.a.particle == id || joint.b.particle == id;
+                              }),
+               kind.end());
   });
   materials_.forget(id);
   const Status removed = particles_.remove(id);
@@ -206,6 +214,11 @@ Status World::removeCollider(const ColliderId id) {
     return true;
   });
   if (!removed) return Status::error("no collider with id " + std::to_string(id));
+  ++colliders_version_;
+  // What rested on it falls.
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.type(i) != BodyType::kFixed) bodies_.setAwake(i, true);
+  }
   return Status::ok();
 }
 
@@ -243,7 +256,11 @@ void World::clear() {
   particles_.clear();
   generators_.clear();
   colliders_.clear();
+  ++colliders_version_;
   links_.clear();
+  bodies_.clear();
+  joints_.clear();
+  body_ws_ = Owned<BodyWorkspace>();
   materials_.clear();
   ++generators_version_;
   last_contact_stats_ = ContactStats{};
@@ -273,6 +290,13 @@ Real World::kineticEnergy() const {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (inverse_mass[i] > 0.0) energy += 0.5 * v.col(i).squaredNorm() / inverse_mass[i];
   }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (!bodies_.dynamic(i)) continue;
+    // (m v^2 + w_b.I w_b) / 2, w_b in the principal frame.
+    const Vec3 w = bodies_.orientation(i).conjugate() * bodies_.angularVelocity(i);
+    energy += 0.5 * (bodies_.mass(i) * bodies_.linearVelocity(i).squaredNorm() +
+                     w.dot(bodies_.principalInertia(i).cwiseProduct(w)));
+  }
   return energy;
 }
 
@@ -282,6 +306,9 @@ Real World::gravitationalEnergy() const {
   Real energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (inverse_mass[i] > 0.0) energy -= config_.gravity.dot(x.col(i)) / inverse_mass[i];
+  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.dynamic(i)) energy -= bodies_.mass(i) * config_.gravity.dot(bodies_.position(i));
   }
   return energy;
 }
@@ -297,6 +324,28 @@ Vec3 World::linearMomentum() const {
   Vec3 momentum = Vec3::Zero();
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (inverse_mass[i] > 0.0) momentum += v.col(i) / inverse_mass[i];
+  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.dynamic(i)) momentum += bodies_.mass(i) * bodies_.linearVelocity(i);
+  }
+  return momentum;
+}
+
+Vec3 World::angularMomentum() const {
+  const auto x = particles_.positions();
+  const auto v = particles_.velocities();
+  const auto inverse_mass = particles_.inverseMasses();
+  Vec3 momentum = Vec3::Zero();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass[i] > 0.0) momentum += x.col(i).cross(Vec3(v.col(i))) / inverse_mass[i];
+  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (!bodies_.dynamic(i)) continue;
+    // x m v plus I w, I = R diag(I_p) R^T.
+    const Quat& q = bodies_.orientation(i);
+    const Vec3 spin =
+        q * bodies_.principalInertia(i).cwiseProduct(q.conjugate() * bodies_.angularVelocity(i));
+    momentum += bodies_.mass(i) * bodies_.position(i).cross(bodies_.linearVelocity(i)) + spin;
   }
   return momentum;
 }
@@ -327,6 +376,36 @@ std::uint64_t World::stateHash() const {
     for (Eigen::Index i = 0; i < a.cols(); ++i) hasher.add(Vec3(a.col(i)));
   }
   contacts_->resolver.addToHash(hasher);
+  // Bodies and joints, only where there are any (a particle world's hash is as it was).
+  if (!bodies_.empty() || !joints_.empty()) {
+    hasher.add(static_cast<std::uint64_t>(bodies_.size()));
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      hasher.add(bodies_.idAt(i).packed());
+      hasher.add(bodies_.position(i));
+      const Quat& q = bodies_.orientation(i);
+      hasher.add(Vec3(q.x(), q.y(), q.z()));
+      hasher.add(q.w());
+      hasher.add(bodies_.linearVelocity(i));
+      hasher.add(bodies_.angularVelocity(i));
+      hasher.add(static_cast<std::uint64_t>(bodies_.awake(i)));
+      hasher.add(bodies_.sleepTime(i));
+    }
+    for (const BodyContact& c : body_ws_->contacts) {
+      hasher.add(static_cast<std::uint64_t>(c.key.other));
+      hasher.add(static_cast<std::uint64_t>(c.key.shape));
+      hasher.add(c.key.b);
+      for (int k = 0; k < c.manifold.count; ++k) {
+        hasher.add(static_cast<std::uint64_t>(c.manifold.points[k].id));
+        hasher.add(c.impulses[k].normal);
+        hasher.add(c.impulses[k].tangent[0]);
+        hasher.add(c.impulses[k].tangent[1]);
+      }
+    }
+    joints_.forEach([&](const auto& kind) {
+      using Kind = typename std::decay_t<decltype(kind)>::value_type;
+      for (const auto& joint : kind) JointKind<Kind>::addToHash(joint, hasher);
+    });
+  }
   return hasher.value();
 }
 

@@ -19,7 +19,7 @@
 #include <optional>
 #include <vector>
 
-#include "mass_aggregate_sim/engine/collision/shape_kind.h"
+#include "mass_aggregate_sim/engine/collision/shape_parts.h"
 #include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/transform.h"
 

@@ -12,5 +12,8 @@ namespace engine {
 // and for each against a plane and against a particle (a sphere).
 using BodyShapeKinds = KindList<SphereShape, BoxShape, CapsuleShape>;
 
+// A body shape of any kind.
+using AnyBodyShape = KindVariant<BodyShapeKinds>;
+
 }  // namespace engine
 }  // namespace mass_aggregate_sim

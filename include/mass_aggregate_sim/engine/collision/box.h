@@ -31,6 +31,9 @@ struct ShapeKind<BoxCollider> {
   static std::optional<RayShapeHit> raycast(const BoxCollider& box, const Vec3& origin,
                                             const Vec3& direction, Real max_t, Real inflate);
   static ShapeDescription describe(const BoxCollider& box);
+  static std::optional<Aabb> bounds(const BoxCollider& box);
+  static void bodyContact(const BoxCollider& box, const AnyBodyShape& shape, const Frame& frame,
+                          Real margin, Manifold& out);
 };
 
 }  // namespace engine

@@ -29,6 +29,9 @@ struct ShapeKind<CapsuleCollider> {
   static std::optional<RayShapeHit> raycast(const CapsuleCollider& capsule, const Vec3& origin,
                                             const Vec3& direction, Real max_t, Real inflate);
   static ShapeDescription describe(const CapsuleCollider& capsule);
+  static std::optional<Aabb> bounds(const CapsuleCollider& capsule);
+  static void bodyContact(const CapsuleCollider& capsule, const AnyBodyShape& shape,
+                          const Frame& frame, Real margin, Manifold& out);
 };
 
 }  // namespace engine

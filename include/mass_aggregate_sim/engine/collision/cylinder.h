@@ -34,6 +34,9 @@ struct ShapeKind<CylinderCollider> {
   static std::optional<RayShapeHit> raycast(const CylinderCollider& cylinder, const Vec3& origin,
                                             const Vec3& direction, Real max_t, Real inflate);
   static ShapeDescription describe(const CylinderCollider& cylinder);
+  static std::optional<Aabb> bounds(const CylinderCollider& cylinder);
+  static void bodyContact(const CylinderCollider& cylinder, const AnyBodyShape& shape,
+                          const Frame& frame, Real margin, Manifold& out);
 };
 
 }  // namespace engine

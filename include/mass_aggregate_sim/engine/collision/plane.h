@@ -40,6 +40,9 @@ struct ShapeKind<PlaneCollider> {
   static std::optional<RayShapeHit> raycast(const PlaneCollider& plane, const Vec3& origin,
                                             const Vec3& direction, Real max_t, Real inflate);
   static ShapeDescription describe(const PlaneCollider& plane);
+  static std::optional<Aabb> bounds(const PlaneCollider& plane);
+  static void bodyContact(const PlaneCollider& plane, const AnyBodyShape& shape, const Frame& frame,
+                          Real margin, Manifold& out);
 };
 
 }  // namespace engine

@@ -26,6 +26,9 @@ struct ShapeKind<SphereCollider> {
   static std::optional<RayShapeHit> raycast(const SphereCollider& sphere, const Vec3& origin,
                                             const Vec3& direction, Real max_t, Real inflate);
   static ShapeDescription describe(const SphereCollider& sphere);
+  static std::optional<Aabb> bounds(const SphereCollider& sphere);
+  static void bodyContact(const SphereCollider& sphere, const AnyBodyShape& shape,
+                          const Frame& frame, Real margin, Manifold& out);
 };
 
 }  // namespace engine

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 namespace mass_aggregate_sim {
@@ -24,6 +25,22 @@ template <typename... Kinds, typename F>
 void forEachKind(KindList<Kinds...>, F&& f) {
   (f(KindTag<Kinds>{}), ...);
 }
+
+// How many kinds a list has.
+template <typename... Kinds>
+constexpr std::size_t kindCount(KindList<Kinds...>) {
+  return sizeof...(Kinds);
+}
+
+// One value of any kind of a KindList: std::visit over it needs every kind.
+template <typename List>
+struct KindVariantOf;
+template <typename... Kinds>
+struct KindVariantOf<KindList<Kinds...>> {
+  using type = std::variant<Kinds...>;
+};
+template <typename List>
+using KindVariant = typename KindVariantOf<List>::type;
 
 // One array per kind of a KindList, visited in the list's order.
 template <typename List>

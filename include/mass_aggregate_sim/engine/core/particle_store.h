@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/core/dense_slots.h"
 #include "mass_aggregate_sim/engine/core/particle_id.h"
 #include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/types.h"
@@ -33,7 +34,7 @@ Status validateSpec(const ParticleSpec& spec);
 // hole, so dense indices change; ParticleId (slot + generation) is the stable handle.
 class ParticleStore {
  public:
-  std::size_t size() const { return slot_of_dense_.size(); }
+  std::size_t size() const { return slots_.size(); }
   bool empty() const { return size() == 0; }
 
   ParticleId add(const ParticleSpec& spec);
@@ -45,7 +46,7 @@ class ParticleStore {
   // The dense index of a live particle, or nothing for a stale or unknown id.
   std::optional<std::size_t> find(ParticleId id) const;
   // Dense index of an id known to be live (no check: for hot loops over validated references).
-  std::size_t denseIndexUnchecked(ParticleId id) const { return dense_of_slot_[id.index]; }
+  std::size_t denseIndexUnchecked(ParticleId id) const { return slots_.denseIndexUnchecked(id); }
   ParticleId idAt(std::size_t dense) const;
   // Says why an id is not live: unknown slot, or the generation it had versus the slot's now.
   std::string describeInvalid(ParticleId id) const;
@@ -103,6 +104,7 @@ class ParticleStore {
   void moveDense(std::size_t from, std::size_t to);
   void popDense();
 
+  DenseSlots<ParticleId> slots_;
   // Growable buffers (amortised O(1) add); Eigen maps give the arrays their shape.
   std::vector<Real> position_;
   std::vector<Real> velocity_;
@@ -117,11 +119,6 @@ class ParticleStore {
   std::vector<Real> radius_;
   std::vector<std::string> name_;
 
-  std::vector<std::uint32_t> slot_of_dense_;
-  std::vector<std::uint32_t> dense_of_slot_;
-  std::vector<std::uint32_t> generation_of_slot_;
-  std::vector<bool> slot_live_;
-  std::vector<std::uint32_t> free_slots_;
   std::uint64_t damping_version_ = 0;
   std::uint64_t layout_version_ = 0;
 };

@@ -33,7 +33,8 @@ struct Frame {
   Mat3 rotation = Mat3::Identity();
 
   Frame() = default;
-  explicit Frame(const Transform& t) : position(t.position), rotation(t.rotation.toRotationMatrix()) {}
+  explicit Frame(const Transform& t)
+      : position(t.position), rotation(t.rotation.toRotationMatrix()) {}
   Frame(const Vec3& p, const Mat3& r) : position(p), rotation(r) {}
   Vec3 apply(const Vec3& local) const { return rotation * local + position; }
   Vec3 applyInverse(const Vec3& world) const { return rotation.transpose() * (world - position); }

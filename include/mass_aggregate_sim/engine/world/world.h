@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/bodies/body_contact_report.h"
+#include "mass_aggregate_sim/engine/bodies/body_settings.h"
+#include "mass_aggregate_sim/engine/bodies/body_store.h"
 #include "mass_aggregate_sim/engine/collision/colliders.h"
 #include "mass_aggregate_sim/engine/collision/collision_settings.h"
 #include "mass_aggregate_sim/engine/collision/particle_materials.h"
@@ -16,6 +19,7 @@
 #include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/types.h"
 #include "mass_aggregate_sim/engine/forces/force_generators.h"
+#include "mass_aggregate_sim/engine/joints/joints.h"
 #include "mass_aggregate_sim/engine/solver/links.h"
 #include "mass_aggregate_sim/engine/world/stability.h"
 #include "mass_aggregate_sim/engine/world/world_config.h"
@@ -23,12 +27,14 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
-// A divergence found after a step: a non-finite position or velocity (the first such particle), or
-// energy growing beyond the guard's bound (the particle with the most kinetic energy).
+// A divergence found after a step: a non-finite position or velocity (the first such particle or
+// body), or energy growing beyond the guard's bound (the particle or body with the most kinetic
+// energy). One of particle and body is valid.
 struct DivergenceEvent {
   std::uint64_t step = 0;
   Real time = 0.0;
   ParticleId particle;
+  BodyId body;
   std::string what;
 };
 
@@ -52,6 +58,7 @@ class InvalidConfig : public std::invalid_argument {
 struct IntegratorState;
 struct ContactWorkspace;
 struct GuardState;
+struct BodyWorkspace;
 // What the world derives from its state to save work (never state: a copy derives it again).
 struct StepCaches;
 class StepContext;
@@ -115,6 +122,41 @@ class World {
   Status removeCollider(ColliderId id);
   const Colliders& colliders() const { return colliders_; }
 
+  // --- rigid bodies (bodies/): a second kind of body in the same world, stepped by the same
+  // stages; a world without bodies pays nothing for them. Every request on a body wakes it. ---
+  // Refused (nothing added) when the spec or its mass properties are invalid.
+  Result<BodyId> addBody(const BodySpec& spec);
+  // Also removes its joints and its contacts.
+  Status removeBody(BodyId id);
+  // Moves the body's frame to pose (velocities kept).
+  Status setBodyPose(BodyId id, const Transform& pose);
+  // Velocities of the centre of mass, world frame.
+  Status setBodyVelocity(BodyId id, const Vec3& linear, const Vec3& angular);
+  // A force at a world point for the next step: F on the centre of mass and (p - c) x F about it.
+  Status addBodyForce(BodyId id, const Vec3& force, const Vec3& point);
+  Status addBodyTorque(BodyId id, const Vec3& torque);
+  // dv = J / m and dw = I^-1 ((p - c) x J) for a linear impulse J at world point p, plus
+  // dw = I^-1 L for an angular impulse L; refused for a body that is not dynamic.
+  Status applyBodyImpulse(BodyId id, const Vec3& impulse, const Vec3& point,
+                          const Vec3& angular_impulse = Vec3::Zero());
+  Status wakeBody(BodyId id);
+  const BodyStore& bodies() const { return bodies_; }
+  Status setBodySettings(const BodySettings& settings);
+  const BodySettings& bodySettings() const { return body_settings_; }
+  // Every body contact with at least one point, as of the last step, in the solver's order.
+  std::vector<BodyContactReport> bodyContacts() const;
+
+  // --- joints (JointKinds: BallJoint, HingeJoint, FixedJoint, DistanceJoint), between two
+  // bodies, a body and a particle, or a body and the world; validated by their kind. ---
+  template <typename Kind>
+  Result<JointId> addJoint(Kind joint);
+  Status removeJoint(JointId id);
+  const Joints& joints() const { return joints_; }
+  // Every joint's force and torque on its end b in the last substep, sorted by id.
+  std::vector<JointReaction> jointReactions() const;
+  // A hinge's motor, changed while it runs.
+  Status setHingeMotor(JointId id, bool enabled, Real speed, Real max_torque);
+
   // --- contacts ---
   Status setCollisionSettings(const CollisionSettings& settings);
   const CollisionSettings& collisionSettings() const { return collision_settings_; }
@@ -130,7 +172,8 @@ class World {
   std::vector<ParticleId> overlapSphere(const Vec3& center, Real radius) const;
   std::vector<ParticleId> overlapBox(const Vec3& center, const Vec3& half_extents) const;
 
-  // Removes all particles, generators, links and colliders; time goes back to zero. Settings stay.
+  // Removes all particles, generators, links, colliders, bodies and joints; time goes back to
+  // zero. Settings stay.
   void clear();
 
   // --- time ---
@@ -144,15 +187,19 @@ class World {
   Real time() const { return time_origin_ + static_cast<Real>(steps_since_origin_) * config_.dt; }
   std::uint64_t stepCount() const { return step_count_; }
 
-  // --- measurements ---
+  // --- measurements (particles and bodies) ---
+  // Bodies: (m v^2 + w.I w) / 2.
   Real kineticEnergy() const;
-  // -sum m g.x over movable particles (zero at the origin).
+  // -sum m g.x over movable particles and dynamic bodies' centres (zero at the origin).
   Real gravitationalEnergy() const;
   Real springEnergy() const;
   Real totalEnergy() const { return kineticEnergy() + gravitationalEnergy() + springEnergy(); }
   Vec3 linearMomentum() const;
+  // About the world's origin: sum x m v, plus each body's own I w.
+  Vec3 angularMomentum() const;
   // Hash of the full dynamic state (ids, positions, velocities, integrator history, the impulses
-  // contacts carry into the next substep, time): equal hashes mean bit-identical states.
+  // contacts and joints carry into the next substep, bodies' orientations and sleep, time):
+  // equal hashes mean bit-identical states.
   std::uint64_t stateHash() const;
 
   // Divergence: a non-finite position or velocity, or the energy guard, after a step. Detected
@@ -181,6 +228,12 @@ class World {
  private:
   // A new id for a generator or link; validated kinds only.
   GeneratorId nextGeneratorId() { return next_generator_id_++; }
+  // The body of a request: its dense index when live, awake now; else the refusal.
+  Result<std::size_t> bodyForRequest(BodyId id);
+  // Checks a joint's ends: live, not the same, able to turn when the kind holds rotation, not both
+  // unable to move.
+  Status checkJointEnds(const JointEnd& a, const JointEnd& b, bool turns) const;
+  void wakeJointEnds(const JointEnd& a, const JointEnd& b);
   Result<ColliderId> nextColliderId();
   // The forces, the springs' layout or the state changed: every force cache and the energy
   // guard's reference are stale (position Verlet's history is kept per particle).
@@ -202,6 +255,11 @@ class World {
   std::uint64_t generators_version_ = 0;
   Colliders colliders_;
   ColliderId next_collider_id_ = 1;
+  std::uint64_t colliders_version_ = 0;
+  BodyStore bodies_;
+  Joints joints_;
+  JointId next_joint_id_ = 1;
+  BodySettings body_settings_;
   CollisionSettings collision_settings_;
   ParticleMaterials materials_;
 
@@ -219,6 +277,7 @@ class World {
   Owned<IntegratorState> integration_;
   Owned<ContactWorkspace> contacts_;
   Owned<GuardState> guard_;
+  Owned<BodyWorkspace> body_ws_;  // made on first use: only worlds with bodies have one
   Derived<StepCaches> caches_;
 };
 
@@ -252,7 +311,23 @@ Result<ColliderId> World::addCollider(Shape shape) {
   if (!id) return id;
   shape.id = *id;
   colliders_.of<Shape>().push_back(shape);
+  ++colliders_version_;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.type(i) != BodyType::kFixed) bodies_.setAwake(i, true);
+  }
   return id;
+}
+
+template <typename Kind>
+Result<JointId> World::addJoint(Kind joint) {
+  const Status ends = checkJointEnds(joint.a, joint.b, JointKind<Kind>::kTurns);
+  if (!ends) return ends;
+  const Status valid = JointKind<Kind>::validate(joint, JointScene{bodies_, particles_});
+  if (!valid) return valid;
+  joint.id = next_joint_id_++;
+  joints_.of<Kind>().push_back(joint);
+  wakeJointEnds(joint.a, joint.b);
+  return joint.id;
 }
 
 }  // namespace engine

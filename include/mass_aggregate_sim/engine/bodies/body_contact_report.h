@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/collision/shape_kind.h"
+#include "mass_aggregate_sim/engine/core/particle_id.h"
+#include "mass_aggregate_sim/engine/bodies/body_spec.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// A body's contact as of the last step, for users (the node's ~contacts): body a's shape against
+// another body, a static collider or a particle, the normal from a to the other side, and per
+// point where it is, how far apart the surfaces were (< 0: overlap) and the impulses of the last
+// substep (normal >= 0, and friction along the surface).
+struct BodyContactReport {
+  enum class Other : std::uint8_t { kBody, kCollider, kParticle };
+  BodyId body;
+  Other other = Other::kBody;
+  BodyId other_body;
+  ColliderId collider = 0;
+  ParticleId particle;
+  Vec3 normal = Vec3::UnitZ();
+  struct Point {
+    Vec3 position = Vec3::Zero();
+    Real separation = 0.0;
+    Real normal_impulse = 0.0;
+    Vec3 friction_impulse = Vec3::Zero();
+  };
+  std::vector<Point> points;
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,57 @@
+#pragma once
+
+#include "mass_aggregate_sim/engine/core/status.h"
+#include "mass_aggregate_sim/engine/core/types.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// How the world steps and solves rigid bodies (only worlds with bodies use these). The body
+// solver is a substepped soft-constraint solver: each substep integrates velocities, warm starts,
+// solves every joint and contact once with a bias that removes overlap and joint error softly,
+// integrates positions, and relaxes once without the bias (so the bias leaves no velocity
+// behind); restitution is applied once after the substeps.
+struct BodySettings {
+  // A world with bodies takes at least this many substeps per step (particles take the same).
+  int substeps = 4;
+  // Passes over the joints and contacts per substep (the first warm started), and relaxing passes
+  // after the positions move.
+  int iterations = 2;
+  int relax_iterations = 2;
+  // Contacts act as springs of this frequency (Hz) and damping ratio on overlap; capped at a
+  // quarter of the substep rate. Joints likewise.
+  Real contact_hertz = 30.0;
+  Real contact_damping_ratio = 10.0;
+  Real joint_hertz = 60.0;
+  Real joint_damping_ratio = 2.0;
+  // Fastest speed (m/s) at which overlap is pushed out.
+  Real max_push_speed = 3.0;
+  // Shapes closer than this (m) already get contact points (speculative contacts).
+  Real speculative_distance = 0.02;
+  // Overlap (m) left alone, so resting contacts do not jitter; what a pile may settle into.
+  Real linear_slop = 0.00005;
+  // Closing speeds (m/s) below this do not bounce (restitution acts above it).
+  Real restitution_threshold = 1.0;
+  // Sleeping: an island whose every body has been slower than sleep_speed (m/s, at any point of
+  // the body) for time_to_sleep (s) sleeps until something touches or changes it.
+  bool sleep = true;
+  Real sleep_speed = 0.05;
+  Real time_to_sleep = 0.5;
+  // Bodies moving further than this fraction of their smallest extent in a step are swept
+  // against static geometry (continuous collision).
+  bool continuous = true;
+  // The gyroscopic term w x I w, integrated implicitly; off only to see what it does (a body
+  // spun about its intermediate axis then never flips, and angular momentum is not conserved).
+  bool gyroscopic = true;
+  // A body faster than this (m/s) has run away: the world reports a divergence (its policy
+  // applies), as it does for a non-finite pose or velocity.
+  Real runaway_speed = 1e4;
+};
+
+// Finite values in range: substeps in [1, 64], iterations in [1, 64], relax iterations in
+// [0, 64], frequencies > 0, damping ratios >= 0, speeds,
+// distances and times > 0 (slop >= 0).
+Status validateBodySettings(const BodySettings& settings);
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,274 @@
+#include "engine/bodies/body_collision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "engine/collision/narrowphase/any_shape.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+// A tree proxy's user data: what it holds, in the top bits, and its index.
+enum class ProxyKind : std::uint64_t { kShape = 0, kCollider = 1 };
+constexpr int kKindShift = 62;
+constexpr std::uint64_t kIndexMask = (std::uint64_t{1} << kKindShift) - 1;
+
+std::uint64_t proxyData(const ProxyKind kind, const std::uint64_t index) {
+  return (static_cast<std::uint64_t>(kind) << kKindShift) | index;
+}
+ProxyKind proxyKind(const std::uint64_t data) { return static_cast<ProxyKind>(data >> kKindShift); }
+std::uint64_t proxyIndex(const std::uint64_t data) { return data & kIndexMask; }
+
+// A collider in the tree: its kind's position in ShapeKinds and its index in that kind's array.
+std::uint64_t colliderIndex(const std::size_t kind, const std::size_t index) {
+  return (static_cast<std::uint64_t>(kind) << 32) | index;
+}
+
+Aabb shapeBox(const BodyStore& bodies, const ShapeIndex s, const Real margin) {
+  return shapeBounds(bodies.shapes()[s].geometry, Frame(bodies.shapePose(s))).grown(margin);
+}
+
+bool awakeBody(const BodyStore& bodies, const BodyId id) {
+  return bodies.awake(bodies.denseIndexUnchecked(id));
+}
+
+// Carries the impulses of the old contact's points over to the new one's by feature id.
+void carryImpulses(const BodyContact& old, BodyContact& contact) {
+  for (int k = 0; k < contact.manifold.count; ++k) {
+    for (int j = 0; j < old.manifold.count; ++j) {
+      if (old.manifold.points[j].id == contact.manifold.points[k].id) {
+        contact.impulses[k] = old.impulses[j];
+        break;
+      }
+    }
+  }
+}
+
+// Calls f(kind index, collider) for every collider of every kind.
+template <typename F>
+void forEachCollider(const Colliders& colliders, F&& f) {
+  std::size_t kind = 0;
+  colliders.forEach([&](const auto& array) {
+    for (std::size_t i = 0; i < array.size(); ++i) f(kind, i, array[i]);
+    ++kind;
+  });
+}
+
+// Calls f(collider) for the collider a tree proxy names.
+template <typename F>
+void withCollider(const Colliders& colliders, const std::uint64_t index, F&& f) {
+  const std::size_t kind = index >> 32;
+  const std::size_t i = index & 0xFFFFFFFFu;
+  std::size_t k = 0;
+  colliders.forEach([&](const auto& array) {
+    if (k++ == kind) f(array[i]);
+  });
+}
+
+template <typename Collider>
+Material colliderMaterial(const Collider& c) {
+  return c.material;
+}
+
+}  // namespace
+
+Material combineMaterials(const Material& a, const Material& b) {
+  return Material{0.5 * (a.restitution + b.restitution), std::sqrt(a.friction * b.friction)};
+}
+
+void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyWorkspace& ws) {
+  const Real margin = scene.settings.speculative_distance;
+  if (ws.colliders_version != scene.colliders_version) {
+    for (const std::int32_t proxy : ws.collider_proxies) ws.tree.destroyProxy(proxy);
+    ws.collider_proxies.clear();
+    forEachCollider(
+        scene.colliders, [&](const std::size_t kind, const std::size_t i, const auto& collider) {
+          using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
+          const std::optional<Aabb> box = Kind::bounds(collider);
+          if (!box) return;  // unbounded: met by every shape
+          ws.collider_proxies.push_back(ws.tree.createProxy(
+              box->grown(margin), proxyData(ProxyKind::kCollider, colliderIndex(kind, i))));
+        });
+    ws.colliders_version = scene.colliders_version;
+  }
+  ws.moved.clear();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const bool awake = bodies.awake(i);
+    for (const ShapeIndex s : bodies.shapesOf(i)) {
+      BodyShape& shape = bodies.shapes()[s];
+      const Aabb box = shapeBox(bodies, s, margin);
+      if (shape.proxy < 0) {
+        shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s));
+      } else if (awake) {
+        ws.tree.moveProxy(shape.proxy, box, bodies.linearVelocity(i) * scene.dt);
+      }
+      if (awake) ws.moved.push_back(shape.proxy);
+    }
+  }
+}
+
+void removeBodyProxies(BodyStore& bodies, const std::size_t dense, BodyWorkspace& ws) {
+  for (const ShapeIndex s : bodies.shapesOf(dense)) {
+    BodyShape& shape = bodies.shapes()[s];
+    if (shape.proxy >= 0) ws.tree.destroyProxy(shape.proxy);
+    shape.proxy = -1;
+  }
+}
+
+void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
+  const BodyStore& bodies = scene.bodies;
+  const Real speculative = scene.settings.speculative_distance;
+  // Speculative margins grow with the motion over the step, so fast bodies meet what they are
+  // about to hit (and bounce off it) instead of passing into it.
+  std::vector<Real>& travel = ws.travel;
+  travel.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    travel[i] = bodies.awake(i) ? scene.dt * (bodies.linearVelocity(i).norm() +
+                                              bodies.angularVelocity(i).norm() * bodies.reach(i))
+                                : 0.0;
+  }
+  const auto travelOf = [&](const ShapeIndex s) {
+    return travel[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
+  };
+  std::vector<BodyContact>& found = ws.found;
+  found.clear();
+  const auto keep = [&](const ContactKey& key, const Manifold& manifold, const Material& material) {
+    if (manifold.count == 0) return;
+    BodyContact contact;
+    contact.key = key;
+    contact.manifold = manifold;
+    contact.friction = material.friction;
+    contact.restitution = material.restitution;
+    found.push_back(contact);
+  };
+
+  // Shape pairs and shapes against bounded colliders, from the tree: every pair with an awake
+  // shape (the moved proxies).
+  ws.finder.findPairs(
+      ws.tree, ws.moved,
+      [&](const std::uint64_t x, const std::uint64_t y) {
+        const ProxyKind kx = proxyKind(x);
+        const ProxyKind ky = proxyKind(y);
+        if (kx == ProxyKind::kCollider && ky == ProxyKind::kCollider) return false;
+        if (kx == ProxyKind::kShape && ky == ProxyKind::kShape) {
+          const BodyShape& a = bodies.shapes()[proxyIndex(x)];
+          const BodyShape& b = bodies.shapes()[proxyIndex(y)];
+          if (a.body == b.body) return false;
+          const std::size_t ia = bodies.denseIndexUnchecked(a.body);
+          const std::size_t ib = bodies.denseIndexUnchecked(b.body);
+          // Two bodies that cannot move against each other never touch.
+          if (!bodies.dynamic(ia) && !bodies.dynamic(ib)) return false;
+          return bodies.awake(ia) || bodies.awake(ib);
+        }
+        const std::uint64_t shape = kx == ProxyKind::kShape ? x : y;
+        const BodyShape& s = bodies.shapes()[proxyIndex(shape)];
+        const std::size_t i = bodies.denseIndexUnchecked(s.body);
+        return bodies.awake(i) && bodies.dynamic(i);
+      },
+      ws.pairs);
+  for (const ProxyPair& pair : ws.pairs) {
+    const std::uint64_t x = ws.tree.userData(pair.a);
+    const std::uint64_t y = ws.tree.userData(pair.b);
+    if (proxyKind(x) == ProxyKind::kShape && proxyKind(y) == ProxyKind::kShape) {
+      const auto sa = static_cast<ShapeIndex>(std::min(proxyIndex(x), proxyIndex(y)));
+      const auto sb = static_cast<ShapeIndex>(std::max(proxyIndex(x), proxyIndex(y)));
+      const BodyShape& a = bodies.shapes()[sa];
+      const BodyShape& b = bodies.shapes()[sb];
+      keep(ContactKey{ContactOther::kShape, sa, sb},
+           collideAny(a.geometry, Frame(bodies.shapePose(sa)), b.geometry,
+                      Frame(bodies.shapePose(sb)), speculative + travelOf(sa) + travelOf(sb)),
+           combineMaterials(a.material, b.material));
+      continue;
+    }
+    const std::uint64_t shape_data = proxyKind(x) == ProxyKind::kShape ? x : y;
+    const std::uint64_t collider_data = proxyKind(x) == ProxyKind::kShape ? y : x;
+    const auto s = static_cast<ShapeIndex>(proxyIndex(shape_data));
+    const BodyShape& shape = bodies.shapes()[s];
+    withCollider(scene.colliders, proxyIndex(collider_data), [&](const auto& collider) {
+      using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
+      Manifold manifold;
+      Kind::bodyContact(collider, shape.geometry, Frame(bodies.shapePose(s)),
+                        speculative + travelOf(s), manifold);
+      keep(ContactKey{ContactOther::kCollider, s, collider.id}, manifold,
+           combineMaterials(shape.material, colliderMaterial(collider)));
+    });
+  }
+
+  // Unbounded colliders (planes) against every awake dynamic body's shapes.
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies.awake(i) || !bodies.dynamic(i)) continue;
+    for (const ShapeIndex s : bodies.shapesOf(i)) {
+      const BodyShape& shape = bodies.shapes()[s];
+      const Frame frame(bodies.shapePose(s));
+      scene.colliders.forEach([&](const auto& array) {
+        for (const auto& collider : array) {
+          using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
+          if (Kind::bounds(collider)) continue;
+          Manifold manifold;
+          Kind::bodyContact(collider, shape.geometry, frame, speculative + travel[i], manifold);
+          keep(ContactKey{ContactOther::kCollider, s, collider.id}, manifold,
+               combineMaterials(shape.material, colliderMaterial(collider)));
+        }
+      });
+    }
+  }
+
+  // Particles (spheres of their radius) against every body shape near them.
+  const ParticleStore& particles = scene.particles;
+  if (!particles.empty()) {
+    const auto x = particles.positions();
+    const auto radius = particles.radii();
+    const Material particle_default{scene.collisions.particle_restitution,
+                                    scene.collisions.particle_friction};
+    const auto v = particles.velocities();
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      const Vec3 center = x.col(p);
+      const Real r = radius[p];
+      const Real margin = speculative + scene.dt * v.col(p).norm();
+      const Aabb box{center - Vec3::Constant(r + margin), center + Vec3::Constant(r + margin)};
+      const ParticleId id = particles.idAt(p);
+      ws.tree.query(box, [&](const std::int32_t proxy) {
+        const std::uint64_t data = ws.tree.userData(proxy);
+        if (proxyKind(data) != ProxyKind::kShape) return true;
+        const auto s = static_cast<ShapeIndex>(proxyIndex(data));
+        const BodyShape& shape = bodies.shapes()[s];
+        keep(ContactKey{ContactOther::kParticle, s, id.packed()},
+             collideAnyWith(shape.geometry, Frame(bodies.shapePose(s)), SphereShape{r},
+                            Frame(center, Mat3::Identity()), margin + travelOf(s)),
+             combineMaterials(shape.material, scene.materials.of(id.index, particle_default)));
+        return true;
+      });
+    }
+  }
+
+  // Warm starts: each new contact's points take the impulses of the old one's with the same
+  // feature ids (both lists sorted by key).
+  const auto by_key = [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; };
+  std::sort(found.begin(), found.end(), by_key);
+  auto old = ws.contacts.begin();
+  for (BodyContact& contact : found) {
+    while (old != ws.contacts.end() && old->key < contact.key) ++old;
+    if (old != ws.contacts.end() && old->key == contact.key) carryImpulses(*old, contact);
+  }
+
+  // Contacts where no side is awake stay as they were: nothing has moved them.
+  const std::size_t fresh = found.size();
+  for (const BodyContact& kept : ws.contacts) {
+    if (kept.key.other == ContactOther::kParticle) continue;
+    const BodyShape& a = bodies.shapes()[kept.key.shape];
+    if (!a.live || awakeBody(bodies, a.body)) continue;
+    if (kept.key.other == ContactOther::kShape) {
+      const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(kept.key.b)];
+      if (!b.live || awakeBody(bodies, b.body)) continue;
+    }
+    found.push_back(kept);
+  }
+  if (found.size() != fresh)
+    std::inplace_merge(found.begin(), found.begin() + fresh, found.end(), by_key);
+  ws.contacts.swap(found);
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,43 @@
+#pragma once
+// Which body shapes touch what, once per step: the broadphase (a dynamic tree of fattened boxes
+// of the body shapes and the static colliders other than planes), then the narrowphase of each
+// candidate pair (shape-shape, shape-collider, shape-particle), kept as contacts in key order
+// with the impulses their points carried from the last step.
+
+#include <cstdint>
+
+#include "engine/bodies/body_workspace.h"
+#include "mass_aggregate_sim/engine/bodies/body_settings.h"
+#include "mass_aggregate_sim/engine/bodies/body_store.h"
+#include "mass_aggregate_sim/engine/collision/colliders.h"
+#include "mass_aggregate_sim/engine/collision/collision_settings.h"
+#include "mass_aggregate_sim/engine/collision/particle_materials.h"
+#include "mass_aggregate_sim/engine/core/particle_store.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+struct BodyCollisionScene {
+  const BodyStore& bodies;
+  const Colliders& colliders;
+  std::uint64_t colliders_version;
+  const ParticleStore& particles;
+  const CollisionSettings& collisions;
+  const ParticleMaterials& materials;
+  const BodySettings& settings;
+  Real dt;
+};
+
+// Puts every shape in the tree (new ones), moves the awake bodies' shapes, and remakes the
+// colliders' proxies when they changed.
+void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyWorkspace& ws);
+// Removes a body's shapes from the tree (before the store forgets them).
+void removeBodyProxies(BodyStore& bodies, std::size_t dense, BodyWorkspace& ws);
+// The step's contacts into ws.contacts (sorted), each point's impulses carried over by key and
+// feature id. Contacts where no side is awake are kept as they were.
+void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws);
+// Mean restitution and geometric-mean friction: the particles' rule, for every pair.
+Material combineMaterials(const Material& a, const Material& b);
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

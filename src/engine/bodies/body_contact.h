@@ -1,0 +1,48 @@
+#pragma once
+// A contact the body solver keeps from step to step: a body shape (side a) against another body
+// shape, a particle or a static collider (side b), its manifold, and the impulses each point ended
+// the last step with (carried over by the point's feature id: warm starting).
+
+#include <array>
+#include <cstdint>
+#include <tuple>
+
+#include "engine/collision/narrowphase/manifold.h"
+#include "mass_aggregate_sim/engine/bodies/body_store.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// In this order in the solver: contacts with static colliders first (they carry what rests on
+// them), then between bodies, then particles.
+enum class ContactOther : std::uint8_t { kCollider, kShape, kParticle };
+
+// Orders contacts (and so the solver's rows): by kind of side b, then shape a, then side b.
+struct ContactKey {
+  ContactOther other = ContactOther::kShape;
+  ShapeIndex shape = 0;
+  std::uint64_t b = 0;  // a ShapeIndex, a ColliderId, or a particle's packed id
+
+  friend bool operator<(const ContactKey& x, const ContactKey& y) {
+    return std::tie(x.other, x.shape, x.b) < std::tie(y.other, y.shape, y.b);
+  }
+  friend bool operator==(const ContactKey& x, const ContactKey& y) {
+    return x.other == y.other && x.shape == y.shape && x.b == y.b;
+  }
+};
+
+struct ContactPointImpulse {
+  Real normal = 0.0;
+  Real tangent[2] = {0.0, 0.0};
+};
+
+struct BodyContact {
+  ContactKey key;
+  Manifold manifold;  // normal from a to b
+  std::array<ContactPointImpulse, Manifold::kMaxPoints> impulses{};
+  Real friction = 0.0;
+  Real restitution = 0.0;
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,347 @@
+#include "engine/bodies/body_stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "engine/bodies/body_collision.h"
+#include "engine/bodies/body_motion.h"
+#include "engine/bodies/contact_solver.h"
+#include "engine/bodies/islands.h"
+#include "engine/integrators/integrators.h"
+#include "engine/world/step_context.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+BodyCollisionScene collisionScene(const StepContext& ctx) {
+  return BodyCollisionScene{*ctx.bodies,    ctx.colliders, ctx.colliders_version, ctx.particles,
+                            ctx.collisions, ctx.materials, *ctx.body_settings,    ctx.dt};
+}
+
+// Contacts soften at most to a quarter of the substep rate (stiffer would be unstable); against
+// a side that never moves, twice as stiff (nothing on that side gives way).
+Softness contactSoftness(const BodySettings& s, const Real h, const bool against_still) {
+  const Real hertz = std::min(s.contact_hertz, 0.25 / h);
+  return makeSoft(against_still ? 2.0 * hertz : hertz, s.contact_damping_ratio, h);
+}
+
+// The solver body of a particle, made on first use.
+std::int32_t particleSolverBody(StepContext& ctx, const std::size_t p) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  if (ws.solver_of_particle.size() != ctx.particles.size()) {
+    ws.solver_of_particle.assign(ctx.particles.size(), kNoBody);
+  }
+  std::int32_t& index = ws.solver_of_particle[p];
+  if (index != kNoBody) return index;
+  const Real inverse_mass = ctx.particles.inverseMasses()[static_cast<Eigen::Index>(p)];
+  if (inverse_mass <= 0.0) return kNoBody;  // immovable: a side that never moves
+  SolverBody sb;
+  sb.inverse_mass = inverse_mass;
+  sb.v = ctx.particles.velocities().col(static_cast<Eigen::Index>(p));
+  index = static_cast<std::int32_t>(ws.solver.size());
+  ws.solver.push_back(sb);
+  ws.particle_of_solver.push_back(static_cast<std::uint32_t>(p));
+  return index;
+}
+
+// The particles' solver bodies take their velocities and moves from the particle store (the
+// particle integrator and contact phase moved them since).
+void loadParticles(StepContext& ctx) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  const auto x = ctx.particles.positions();
+  const auto v = ctx.particles.velocities();
+  for (std::size_t k = 0; k < ws.particle_of_solver.size(); ++k) {
+    const auto p = static_cast<Eigen::Index>(ws.particle_of_solver[k]);
+    SolverBody& sb = ws.solver[ws.first_particle + k];
+    sb.v = v.col(p);
+    sb.dp = x.col(p) - ws.particle_start.col(static_cast<Eigen::Index>(k));
+    ws.particle_velocity.col(static_cast<Eigen::Index>(k)) = sb.v;
+  }
+}
+
+// Back into the store: the velocity the body solver left, and (when `move`) the position moved
+// as the particle's integrator moves it with a velocity change within the substep (beta h dv).
+void storeParticles(StepContext& ctx, const bool move) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  auto x = ctx.particles.positions();
+  auto v = ctx.particles.velocities();
+  const Real beta_h = positionWeight(ctx.config.integrator) * ctx.h;
+  for (std::size_t k = 0; k < ws.particle_of_solver.size(); ++k) {
+    const auto p = static_cast<Eigen::Index>(ws.particle_of_solver[k]);
+    SolverBody& sb = ws.solver[ws.first_particle + k];
+    if (move) {
+      // The pseudo-velocity's push out of an overlap moves the particle now and is dropped.
+      x.col(p) +=
+          beta_h * (sb.v - ws.particle_velocity.col(static_cast<Eigen::Index>(k))) + ctx.h * sb.pv;
+      sb.pv.setZero();
+    }
+    v.col(p) = sb.v;
+  }
+  if (!ws.particle_of_solver.empty()) ctx.integration.acceleration_valid = false;
+}
+
+// A joint end as a side of its row: its solver body (kNoBody for the world, a fixed or sleeping
+// body, an immovable particle), its anchor from its centre of mass and that centre.
+void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3& r, Vec3& center,
+               Quat& q) {
+  const BodyStore& bodies = *ctx.bodies;
+  r.setZero();
+  q = Quat::Identity();
+  if (end.isBody()) {
+    const std::size_t i = bodies.denseIndexUnchecked(end.body);
+    solver = ctx.body_ws->solver_of_body[i];
+    center = bodies.position(i);
+    q = bodies.orientation(i);
+    r = q * bodies.massFrame(i).inverse().apply(end.point);
+    return;
+  }
+  if (end.isParticle()) {
+    const std::size_t p = ctx.particles.denseIndexUnchecked(end.particle);
+    solver = particleSolverBody(ctx, p);
+    center = ctx.particles.positions().col(static_cast<Eigen::Index>(p));
+    return;
+  }
+  solver = kNoBody;
+  center = end.point;
+}
+
+void prepareJoints(StepContext& ctx) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  const BodySettings& s = *ctx.body_settings;
+  const Softness softness =
+      makeSoft(std::min(s.joint_hertz, 0.25 / ctx.h), s.joint_damping_ratio, ctx.h);
+  ws.joints.of_kind.resize(kindCount(JointKinds{}));
+  std::size_t kind = 0;
+  ctx.joints->forEach([&](auto& array) {
+    std::vector<JointRow>& rows = ws.joints.of_kind[kind++];
+    rows.clear();
+    for (std::size_t j = 0; j < array.size(); ++j) {
+      JointRow row;
+      jointSide(ctx, array[j].a, row.a, row.r_a, row.center_a, row.q_a);
+      jointSide(ctx, array[j].b, row.b, row.r_b, row.center_b, row.q_b);
+      if (row.a == kNoBody && row.b == kNoBody) continue;  // nothing it joins can move
+      for (const std::int32_t k : {row.a, row.b}) {
+        if (k != kNoBody) ctx.body_ws->solver[static_cast<std::size_t>(k)].held = true;
+      }
+      row.softness = softness;
+      row.joint = static_cast<std::uint32_t>(j);
+      rows.push_back(row);
+    }
+  });
+}
+
+template <typename F>
+void forEachJointRow(StepContext& ctx, F&& f) {
+  std::size_t kind = 0;
+  ctx.joints->forEach([&](auto& array) {
+    using Kind = typename std::decay_t<decltype(array)>::value_type;
+    for (const JointRow& row : ctx.body_ws->joints.of_kind[kind]) {
+      f(KindTag<Kind>{}, array[row.joint], row);
+    }
+    ++kind;
+  });
+}
+
+void warmStart(StepContext& ctx) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
+    JointKind<typename decltype(tag)::type>::warmStart(joint, row, ws.solver);
+  });
+  warmStartContacts(ws.constraints, ws.solver);
+}
+
+void solvePass(StepContext& ctx, const bool use_bias) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  const JointPass pass{ws.solver, ctx.h, use_bias};
+  forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
+    JointKind<typename decltype(tag)::type>::solve(joint, row, pass);
+  });
+  solveContacts(
+      ws.constraints, ws.solver,
+      ContactPass{ctx.h, use_bias, ctx.body_settings->max_push_speed,
+                  ctx.body_settings->restitution_threshold, ctx.body_settings->linear_slop});
+}
+
+}  // namespace
+
+void beginBodyStep(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  BodyStore& bodies = *ctx.bodies;
+  BodyWorkspace& ws = *ctx.body_ws;
+  ws.prepared = false;
+  ws.solver.clear();
+  ws.solver_of_body.assign(bodies.size(), kNoBody);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies.awake(i) || bodies.type(i) == BodyType::kFixed) continue;
+    bodies.refreshWorldInertia(i);
+    SolverBody sb;
+    sb.v = bodies.linearVelocity(i);
+    sb.w = bodies.angularVelocity(i);
+    sb.inverse_mass = bodies.inverseMass(i);
+    sb.inverse_inertia = bodies.worldInverseInertia(i);
+    ws.solver_of_body[i] = static_cast<std::int32_t>(ws.solver.size());
+    ws.solver.push_back(sb);
+  }
+  ws.first_particle = ws.solver.size();
+  ws.particle_of_solver.clear();
+  ws.solver_of_particle.clear();
+  ws.constraints.clear();
+}
+
+void integrateBodyVelocities(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  const BodyStore& bodies = *ctx.bodies;
+  BodyWorkspace& ws = *ctx.body_ws;
+  const Real h = ctx.h;
+  const Vec3& g = ctx.config.gravity;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::int32_t k = ws.solver_of_body[i];
+    if (k == kNoBody || !bodies.dynamic(i)) continue;
+    SolverBody& sb = ws.solver[static_cast<std::size_t>(k)];
+    // v' = (v + h (g + F / m)) / (1 + h c)
+    sb.acceleration = g + bodies.inverseMass(i) * bodies.force(i);
+    sb.v = (sb.v + h * sb.acceleration) / (1.0 + h * bodies.linearDamping(i));
+    // In the principal frame: the torque's kick, then the gyroscopic term implicitly.
+    const Quat q = sb.dq * bodies.orientation(i);
+    Vec3 w_body = q.conjugate() * sb.w;
+    w_body += h * bodies.inversePrincipalInertia(i).cwiseProduct(q.conjugate() * bodies.torque(i));
+    if (ctx.body_settings->gyroscopic) {
+      w_body = gyroscopicStep(w_body, bodies.principalInertia(i), h);
+    }
+    sb.w = (q * w_body) / (1.0 + h * bodies.angularDamping(i));
+  }
+}
+
+void findBodyPairs(StepContext& ctx) {
+  if (!ctx.bodies || ctx.substep != 0) return;
+  updateBodyProxies(collisionScene(ctx), *ctx.bodies, *ctx.body_ws);
+}
+
+void generateBodyContacts(StepContext& ctx) {
+  if (!ctx.bodies || ctx.substep != 0) return;
+  BodyStore& bodies = *ctx.bodies;
+  BodyWorkspace& ws = *ctx.body_ws;
+  const BodySettings& settings = *ctx.body_settings;
+  findBodyContacts(collisionScene(ctx), ws);
+  // A sleeping island touched by an awake body wakes now; its contacts are made next step.
+  if (wakeTouchedIslands(bodies, ws, *ctx.joints)) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (!bodies.awake(i) || bodies.type(i) == BodyType::kFixed) continue;
+      if (ws.solver_of_body[i] != kNoBody) continue;
+      bodies.refreshWorldInertia(i);
+      SolverBody sb;
+      sb.inverse_mass = bodies.inverseMass(i);
+      sb.inverse_inertia = bodies.worldInverseInertia(i);
+      ws.solver_of_body[i] = static_cast<std::int32_t>(ws.solver.size());
+      ws.solver.push_back(sb);
+    }
+    ws.first_particle = ws.solver.size();
+  }
+  const auto side = [&](const ShapeIndex s, Vec3& center) {
+    const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[s].body);
+    center = bodies.position(i);
+    return ws.solver_of_body[i];
+  };
+  ws.constraints.clear();
+  for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
+    const BodyContact& contact = ws.contacts[c];
+    ContactSides sides;
+    sides.a = side(contact.key.shape, sides.center_a);
+    switch (contact.key.other) {
+      case ContactOther::kShape:
+        sides.b = side(static_cast<ShapeIndex>(contact.key.b), sides.center_b);
+        break;
+      case ContactOther::kCollider:
+        sides.b = kNoBody;
+        break;
+      case ContactOther::kParticle: {
+        const auto p = ctx.particles.find(ParticleId::fromPacked(contact.key.b));
+        sides.b = particleSolverBody(ctx, *p);
+        sides.center_b = ctx.particles.positions().col(static_cast<Eigen::Index>(*p));
+        break;
+      }
+    }
+    if (sides.a == kNoBody && sides.b == kNoBody) continue;
+    for (const std::int32_t k : {sides.a, sides.b}) {
+      if (k != kNoBody) ws.solver[static_cast<std::size_t>(k)].held = true;
+    }
+    const bool still = sides.a == kNoBody || sides.b == kNoBody;
+    ws.constraints.push_back(prepareContact(contact, static_cast<std::uint32_t>(c), sides,
+                                            ws.solver, contactSoftness(settings, ctx.h, still)));
+  }
+  prepareJoints(ctx);
+  // The particles' positions now: their solver bodies' moves are measured from here.
+  const auto count = static_cast<Eigen::Index>(ws.particle_of_solver.size());
+  ws.particle_start.resize(3, count);
+  ws.particle_velocity.resize(3, count);
+  const auto x = ctx.particles.positions();
+  for (Eigen::Index k = 0; k < count; ++k) {
+    ws.particle_start.col(k) = x.col(static_cast<Eigen::Index>(ws.particle_of_solver[k]));
+  }
+  ws.prepared = !ws.solver.empty();
+}
+
+void solveBodyConstraints(StepContext& ctx) {
+  if (!ctx.bodies || !ctx.body_ws->prepared) return;
+  loadParticles(ctx);
+  warmStart(ctx);
+  for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true);
+  storeParticles(ctx, true);
+}
+
+void integrateBodyPositions(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  BodyWorkspace& ws = *ctx.body_ws;
+  const Real h = ctx.h;
+  for (std::size_t k = 0; k < ws.first_particle; ++k) {
+    SolverBody& sb = ws.solver[k];
+    // Free: x' = x + h v + h^2 a / 2 = x + h v' - h^2 a / 2 (v' = v + h a), exact for a
+    // constant a; held: x' = x + h v', the solver's assumption.
+    sb.dp += sb.held ? Vec3(h * (sb.v + sb.pv)) : Vec3(h * sb.v - 0.5 * h * h * sb.acceleration);
+    sb.dq = (rotationOver(sb.w + sb.pw, h) * sb.dq).normalized();
+    sb.dq_matrix = sb.dq.toRotationMatrix();
+    sb.pv.setZero();
+    sb.pw.setZero();
+  }
+  if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
+  loadParticles(ctx);
+  for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false);
+  storeParticles(ctx, false);
+}
+
+void finaliseBodies(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  BodyStore& bodies = *ctx.bodies;
+  BodyWorkspace& ws = *ctx.body_ws;
+  if (ws.prepared) storeImpulses(ws.constraints, ws.contacts);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies.force(i).setZero();
+    bodies.torque(i).setZero();
+    const std::int32_t k = ws.solver_of_body[i];
+    if (k == kNoBody) continue;
+    const SolverBody& sb = ws.solver[static_cast<std::size_t>(k)];
+    bodies.position(i) += sb.dp;
+    bodies.orientation(i) = (sb.dq * bodies.orientation(i)).normalized();
+    bodies.linearVelocity(i) = sb.v;
+    bodies.angularVelocity(i) = sb.w;
+  }
+  // Bodies a fast particle touches stay awake.
+  std::vector<std::uint8_t> busy(bodies.size(), 0);
+  const auto v = ctx.particles.velocities();
+  for (const BodyContact& c : ws.contacts) {
+    if (c.key.other != ContactOther::kParticle) continue;
+    const auto p = ctx.particles.find(ParticleId::fromPacked(c.key.b));
+    if (!p || v.col(static_cast<Eigen::Index>(*p)).norm() < ctx.body_settings->sleep_speed) {
+      continue;
+    }
+    const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[c.key.shape].body);
+    busy[i] = 1;
+    if (!bodies.awake(i)) wakeIsland(bodies, ws, *ctx.joints, i);
+  }
+  updateSleep(bodies, ws, *ctx.joints, *ctx.body_settings, ctx.dt, busy);
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,50 @@
+#pragma once
+// The body solver's state between steps (the broadphase tree, the contacts with their warm
+// starts) and the buffers of a step (solver bodies, contact rows, the joints' rows).
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/bodies/body_contact.h"
+#include "engine/bodies/contact_constraint.h"
+#include "engine/bodies/joint_rows.h"
+#include "engine/bodies/solver_body.h"
+#include "engine/collision/body_pairs.h"
+#include "engine/collision/dynamic_tree.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+struct BodyWorkspace {
+  // Fat boxes are the tight ones grown by this (m): a shape moving less is not reinserted.
+  static constexpr Real kTreeMargin = 0.1;
+
+  DynamicTree tree{kTreeMargin};
+  PairFinder finder;
+  std::vector<ProxyPair> pairs;
+  std::vector<std::int32_t> moved;
+  // The static colliders other than planes, in the tree; remade when the colliders change.
+  std::vector<std::int32_t> collider_proxies;
+  std::uint64_t colliders_version = ~std::uint64_t{0};
+  // Sorted by key; their impulses warm start the next step (state, hashed with the world).
+  std::vector<BodyContact> contacts;
+  std::vector<BodyContact> found;
+  std::vector<Real> travel;  // per body: how far its points may move this step
+
+  // This step: one solver body per awake dynamic or kinematic body, then one per particle that
+  // touches a body or is held by a joint; kNoBody for the rest.
+  std::vector<SolverBody> solver;
+  std::vector<std::int32_t> solver_of_body;      // by dense body index
+  std::vector<std::int32_t> solver_of_particle;  // by dense particle index (when any)
+  std::vector<std::uint32_t>
+      particle_of_solver;  // dense particle index of solver[first_particle + k]
+  std::size_t first_particle = 0;
+  Vec3Array particle_start;     // their positions when the step began
+  Vec3Array particle_velocity;  // their velocities before the body solver, this substep
+  std::vector<ContactConstraint> constraints;
+  JointRows joints;
+  bool prepared = false;  // the step's rows exist (bodies awake, or particles touching them)
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,59 @@
+#pragma once
+// A body contact as the solver sees it during one step: its two solver bodies, its normal and
+// tangents, and per point the anchors (from each centre of mass, fixed for the step) with the
+// terms of its normal row computed once, the separation it had when prepared (moved on by how
+// far the bodies have moved since), and the impulses it accumulates.
+
+#include <array>
+#include <cstdint>
+
+#include "engine/bodies/softness.h"
+#include "engine/bodies/solver_body.h"
+#include "engine/collision/narrowphase/manifold.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+struct ContactConstraintPoint {
+  Vec3 r_a = Vec3::Zero();
+  Vec3 r_b = Vec3::Zero();
+  // The normal row J = [-n, -(r_a x n), n, r_b x n]: its angular parts, and what a unit impulse
+  // along it does to each side's angular velocity, I^-1 (r x n).
+  Vec3 rn_a = Vec3::Zero();
+  Vec3 rn_b = Vec3::Zero();
+  Vec3 turn_a = Vec3::Zero();
+  Vec3 turn_b = Vec3::Zero();
+  // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors.
+  Real separation = 0.0;
+  Real normal_mass = 0.0;
+  Real tangent_mass[2] = {0.0, 0.0};
+  Real normal_impulse = 0.0;
+  Real tangent_impulse[2] = {0.0, 0.0};
+};
+
+using PointBlock = Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>;
+
+struct ContactConstraint {
+  std::int32_t a = kNoBody;
+  std::int32_t b = kNoBody;
+  std::uint32_t contact = 0;  // index into the step's contacts
+  Real inverse_mass_a = 0.0;
+  Real inverse_mass_b = 0.0;
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitY()};
+  Real friction = 0.0;
+  Real restitution = 0.0;
+  Softness softness;
+  // The contact's impact has been resolved this step (restitution): its normal rows rest until
+  // the next step, which does not warm start them.
+  bool impact = false;
+  int count = 0;
+  // The points' normal rows coupled through the bodies, K_ij = J_i M^-1 J_j^T, inverted once: one
+  // solve gives every point its share (a face's four points are coupled and K is singular: its
+  // pseudo-inverse gives the least-norm share, the symmetric one).
+  PointBlock normal_block = PointBlock::Zero();
+  std::array<ContactConstraintPoint, Manifold::kMaxPoints> points{};
+};
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

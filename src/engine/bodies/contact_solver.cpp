@@ -1,0 +1,381 @@
+#include "engine/bodies/contact_solver.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+using PointVector = Eigen::Matrix<Real, Manifold::kMaxPoints, 1>;
+// A square block of at most four points, held without the heap.
+using SmallBlock = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, Manifold::kMaxPoints,
+                                 Manifold::kMaxPoints>;
+using SmallVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, Manifold::kMaxPoints, 1>;
+
+// The two sides of a contact as the rows see them: their solver bodies, or a body at rest for a
+// side that never moves (its impulses go nowhere).
+class Sides {
+ public:
+  Sides(const ContactConstraint& c, std::vector<SolverBody>& bodies)
+      : a(c.a == kNoBody ? still_a_ : bodies[static_cast<std::size_t>(c.a)]),
+        b(c.b == kNoBody ? still_b_ : bodies[static_cast<std::size_t>(c.b)]) {}
+
+ private:
+  SolverBody still_a_;
+  SolverBody still_b_;
+
+ public:
+  SolverBody& a;
+  SolverBody& b;
+};
+
+// v_n = n.(v_b - v_a) + w_b.(r_b x n) - w_a.(r_a x n)
+Real normalVelocity(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s) {
+  return c.normal.dot(s.b.v - s.a.v) + s.b.w.dot(cp.rn_b) - s.a.w.dot(cp.rn_a);
+}
+Real normalPseudoVelocity(const ContactConstraint& c, const ContactConstraintPoint& cp,
+                          const Sides& s) {
+  return c.normal.dot(s.b.pv - s.a.pv) + s.b.pw.dot(cp.rn_b) - s.a.pw.dot(cp.rn_a);
+}
+// An impulse j along the normal row: -j n on a, +j n on b.
+void pushNormal(const ContactConstraint& c, const ContactConstraintPoint& cp, Sides& s,
+                const Real j) {
+  s.a.v -= (c.inverse_mass_a * j) * c.normal;
+  s.a.w -= j * cp.turn_a;
+  s.b.v += (c.inverse_mass_b * j) * c.normal;
+  s.b.w += j * cp.turn_b;
+}
+void pushPseudo(const ContactConstraint& c, const ContactConstraintPoint& cp, Sides& s,
+                const Real j) {
+  s.a.pv -= (c.inverse_mass_a * j) * c.normal;
+  s.a.pw -= j * cp.turn_a;
+  s.b.pv += (c.inverse_mass_b * j) * c.normal;
+  s.b.pw += j * cp.turn_b;
+}
+// Any impulse p at the points' anchors: -p on a, +p on b.
+void pushAt(const ContactConstraintPoint& cp, Sides& s, const Vec3& p) {
+  s.a.applyImpulse(cp.r_a, -p);
+  s.b.applyImpulse(cp.r_b, p);
+}
+
+// The separation of point cp now: as prepared, moved on by the anchors' displacements since.
+Real separationNow(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s) {
+  return cp.separation + c.normal.dot(s.b.displacementOf(cp.r_b) - s.a.displacementOf(cp.r_a));
+}
+
+// Whether point cp closes within this substep: v_n < -s / h for a gap s > 0, v_n < 0 for overlap.
+bool closes(const Real vn, const Real s, const Real h) { return s > 0.0 ? vn < -s / h : vn < 0.0; }
+
+// K of the points index[0..count): K_ij = m_a + m_b + (r_ai x n).I_a^-1 (r_aj x n) + (b's).
+SmallBlock coupledMass(const ContactConstraint& c, const int* index, const int count) {
+  SmallBlock k(count, count);
+  for (int i = 0; i < count; ++i) {
+    const ContactConstraintPoint& pi = c.points[index[i]];
+    for (int j = 0; j < count; ++j) {
+      const ContactConstraintPoint& pj = c.points[index[j]];
+      k(i, j) =
+          c.inverse_mass_a + c.inverse_mass_b + pi.rn_a.dot(pj.turn_a) + pi.rn_b.dot(pj.turn_b);
+    }
+  }
+  return k;
+}
+
+// The pseudo-inverse of a symmetric K: eigenvalues below a millionth of the largest count as zero.
+// A face's four coplanar points make K singular (rank 3: push, and turn about two axes), and
+// closing speeds that differ by rounding are then not quite in its range: an inverse would answer
+// with huge opposite impulses on alternate corners; the pseudo-inverse gives the least-squares,
+// least-norm share.
+SmallBlock pseudoInverse(const SmallBlock& k) {
+  const Eigen::SelfAdjointEigenSolver<SmallBlock> eigen(k);
+  const auto& values = eigen.eigenvalues();
+  const Real floor = 1e-6 * values.cwiseAbs().maxCoeff();
+  SmallVector inverted(values.size());
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
+  }
+  return eigen.eigenvectors() * inverted.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+// Rows of contact c along its normal, solved at once: the points in index[0..count), each with
+// its closing speed (normal velocity plus bias) from closing(k) and its accumulated impulse in
+// totals[k]; j = -K^-1 closing (the precomputed block when every point takes part), applied by
+// apply(k, j) when every total stays >= 0; else a point whose total would pull leaves and the
+// rest are solved again. False when the set ran down to one point (the caller goes point by
+// point).
+template <typename Closing, typename Apply>
+bool solveTogether(const ContactConstraint& c, int* index, int count, Real* totals,
+                   Closing&& closing, Apply&& apply) {
+  for (int attempt = 0; attempt < Manifold::kMaxPoints && count > 1; ++attempt) {
+    PointVector shared;
+    if (count == c.count) {
+      PointVector speed = PointVector::Zero();
+      for (int i = 0; i < count; ++i) speed[i] = closing(index[i]);
+      shared = c.normal_block * speed;
+    } else {
+      SmallVector speed(count);
+      for (int i = 0; i < count; ++i) speed[i] = closing(index[i]);
+      shared.head(count) = pseudoInverse(coupledMass(c, index, count)) * speed;
+    }
+    int kept = 0;
+    for (int i = 0; i < count; ++i) kept += totals[index[i]] - shared[i] >= 0.0 ? 1 : 0;
+    if (kept == count) {
+      for (int i = 0; i < count; ++i) {
+        totals[index[i]] -= shared[i];
+        apply(index[i], -shared[i]);
+      }
+      return true;
+    }
+    kept = 0;
+    for (int i = 0; i < count; ++i) {
+      if (totals[index[i]] - shared[i] >= 0.0) index[kept++] = index[i];
+    }
+    count = kept;
+  }
+  return false;
+}
+
+// The impact of contact c: its closing points at once, so that each separates at e |v_n| (the
+// speed it closed at), through their coupled mass (those that would pull left out).
+void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
+  int index[Manifold::kMaxPoints];
+  Real target[Manifold::kMaxPoints];
+  Real totals[Manifold::kMaxPoints] = {0.0, 0.0, 0.0, 0.0};
+  int count = 0;
+  Real touch = h;  // when within the substep the first point touches
+  for (int k = 0; k < c.count; ++k) {
+    const ContactConstraintPoint& cp = c.points[k];
+    const Real vn = normalVelocity(c, cp, s);
+    const Real gap = separationNow(c, cp, s);
+    if (!closes(vn, gap, h)) continue;
+    touch = std::min(touch, std::max(gap, 0.0) / -vn);
+    index[count++] = k;
+  }
+  // The velocities are the substep's end (its kick applied); at the touch the bodies had
+  // v - a (h - touch), and that is the speed a point closed at: each separates at e times it.
+  const Real closing_acceleration = c.normal.dot(s.b.acceleration - s.a.acceleration);
+  for (int i = 0; i < count; ++i) {
+    const int k = index[i];
+    const Real at_touch = normalVelocity(c, c.points[k], s) - closing_acceleration * (h - touch);
+    target[k] = -c.restitution * at_touch + closing_acceleration * (h - touch);
+  }
+  const Vec3 v_a = s.a.v;
+  const Vec3 v_b = s.b.v;
+  const auto closing = [&](const int k) { return normalVelocity(c, c.points[k], s) - target[k]; };
+  const auto push = [&](const int k, const Real j) { pushNormal(c, c.points[k], s, j); };
+  if (!solveTogether(c, index, count, totals, closing, push) && count == 1) {
+    const int k = index[0];
+    push(k, std::max(-c.points[k].normal_mass * closing(k), 0.0));
+  }
+  // The bodies fly on to the touch before turning back. Over the substep, from v0 = v - a h,
+  // they move v0 touch + a touch^2 / 2 + (v0 + a touch + dv)(h - touch) + a (h - touch)^2 / 2
+  // = h (v + dv) - a h^2 / 2 - touch dv: the positions stage (h (v + dv)) is short by the rest.
+  const auto move = [&](SolverBody& body, const Vec3& before) {
+    body.dp += -0.5 * h * h * body.acceleration - touch * (body.v - before);
+  };
+  if (c.a != kNoBody) move(s.a, v_a);
+  if (c.b != kNoBody) move(s.b, v_b);
+  // An impact acts once: its impulse is no substep's to warm start again, and the contact holds
+  // nothing more this step (nor friction, bounded by a normal impulse of 0).
+  for (int k = 0; k < c.count; ++k) {
+    c.points[k].normal_impulse = 0.0;
+    c.points[k].tangent_impulse[0] = 0.0;
+    c.points[k].tangent_impulse[1] = 0.0;
+  }
+  c.impact = true;
+}
+
+// The normal rows of c. The velocities are held rigidly: a touching point may not close (the
+// velocity rows carry the load from substep to substep, warm started, with no spring to sink
+// under it), and a gap may close within the substep, no faster. Overlap beyond the slop is
+// pushed out by pseudo-velocities (split impulses): they move the positions over the substep and
+// are then dropped, so pushing out adds no momentum and cannot set a column of boxes bouncing,
+// which a bias in the real velocities did (only one pass per substep takes it back out).
+// Relaxing, the pseudo-velocities rest and a point with a gap may give back what it pushed with,
+// never push more: that would slow a body in the air about to land, and its bounce with it.
+void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const Real inverse_h) {
+  Real separation[Manifold::kMaxPoints];
+  Real totals[Manifold::kMaxPoints];
+  int index[Manifold::kMaxPoints];
+  int count = 0;
+  for (int k = 0; k < c.count; ++k) {
+    separation[k] = separationNow(c, c.points[k], s);
+    totals[k] = c.points[k].normal_impulse;
+    // Relaxing, a point further apart than the slop counts as a gap (within the slop, as
+    // touching: a face landing flat must not split into points either side of zero).
+    if (pass.use_bias || separation[k] <= pass.slop) index[count++] = k;
+  }
+  const auto closing = [&](const int k) {
+    return normalVelocity(c, c.points[k], s) + std::max(separation[k], 0.0) * inverse_h;
+  };
+  const auto push = [&](const int k, const Real j) {
+    c.points[k].normal_impulse += j;
+    pushNormal(c, c.points[k], s, j);
+  };
+  if (!solveTogether(c, index, count, totals, closing, push)) {
+    for (int k = 0; k < c.count; ++k) {
+      ContactConstraintPoint& cp = c.points[k];
+      Real total = std::max(cp.normal_impulse - cp.normal_mass * closing(k), 0.0);
+      if (!pass.use_bias && separation[k] > pass.slop) total = std::min(total, cp.normal_impulse);
+      push(k, total - cp.normal_impulse);
+    }
+  }
+  if (!pass.use_bias) return;
+  // Split impulses: an overlap beyond half the slop is pushed back to half of it, at the soft
+  // bias rate, at most max_push_speed (so a resting overlap stays below the slop).
+  count = 0;
+  Real pseudo_totals[Manifold::kMaxPoints] = {0.0, 0.0, 0.0, 0.0};
+  Real bias[Manifold::kMaxPoints];
+  for (int k = 0; k < c.count; ++k) {
+    const Real beyond = separation[k] + 0.5 * pass.slop;
+    if (beyond >= 0.0) continue;
+    bias[k] = std::max(c.softness.bias_rate * beyond, -pass.max_push_speed);
+    index[count++] = k;
+  }
+  const auto pseudo_closing = [&](const int k) {
+    return normalPseudoVelocity(c, c.points[k], s) + bias[k];
+  };
+  const auto pseudo_push = [&](const int k, const Real j) { pushPseudo(c, c.points[k], s, j); };
+  if (count > 0 && !solveTogether(c, index, count, pseudo_totals, pseudo_closing, pseudo_push)) {
+    for (int i = 0; i < count; ++i) {
+      const int k = index[i];
+      const Real total =
+          std::max(pseudo_totals[k] - c.points[k].normal_mass * pseudo_closing(k), 0.0);
+      pseudo_push(k, total - pseudo_totals[k]);
+      pseudo_totals[k] = total;
+    }
+  }
+}
+
+// Coulomb's cone at each point: the tangential impulse (both directions together) at most mu j_n.
+void solveFriction(ContactConstraint& c, Sides& s) {
+  for (int k = 0; k < c.count; ++k) {
+    ContactConstraintPoint& cp = c.points[k];
+    const Vec3 dv = s.b.velocityAt(cp.r_b) - s.a.velocityAt(cp.r_a);
+    const Real old0 = cp.tangent_impulse[0];
+    const Real old1 = cp.tangent_impulse[1];
+    Real t0 = old0 - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
+    Real t1 = old1 - cp.tangent_mass[1] * dv.dot(c.tangent[1]);
+    const Real limit = c.friction * cp.normal_impulse;
+    const Real length_squared = t0 * t0 + t1 * t1;
+    if (length_squared > limit * limit) {
+      const Real scale = limit / std::sqrt(length_squared);
+      t0 *= scale;
+      t1 *= scale;
+    }
+    cp.tangent_impulse[0] = t0;
+    cp.tangent_impulse[1] = t1;
+    pushAt(cp, s, (t0 - old0) * c.tangent[0] + (t1 - old1) * c.tangent[1]);
+  }
+}
+
+}  // namespace
+
+void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1) {
+  // Perpendicular to n from its two largest components (never near zero: |n| = 1).
+  if (std::abs(n.x()) >= 0.57735026918962576) {
+    t0 = Vec3(n.y(), -n.x(), 0.0).normalized();
+  } else {
+    t0 = Vec3(0.0, n.z(), -n.y()).normalized();
+  }
+  t1 = n.cross(t0);
+}
+
+ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t index,
+                                 const ContactSides& sides, const std::vector<SolverBody>& bodies,
+                                 const Softness& softness) {
+  ContactConstraint c;
+  c.a = sides.a;
+  c.b = sides.b;
+  c.contact = index;
+  c.normal = contact.manifold.normal;
+  tangentBasis(c.normal, c.tangent[0], c.tangent[1]);
+  c.friction = contact.friction;
+  c.restitution = contact.restitution;
+  c.softness = softness;
+  c.count = contact.manifold.count;
+  const SolverBody still;
+  const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
+  const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
+  c.inverse_mass_a = a.inverse_mass;
+  c.inverse_mass_b = b.inverse_mass;
+  for (int k = 0; k < c.count; ++k) {
+    const ManifoldPoint& mp = contact.manifold.points[k];
+    ContactConstraintPoint& cp = c.points[k];
+    cp.r_a = mp.point - sides.center_a;
+    cp.r_b = mp.point - sides.center_b;
+    cp.rn_a = cp.r_a.cross(c.normal);
+    cp.rn_b = cp.r_b.cross(c.normal);
+    cp.turn_a = a.inverse_inertia * cp.rn_a;
+    cp.turn_b = b.inverse_inertia * cp.rn_b;
+    cp.separation = mp.separation;
+    cp.normal_mass = effectiveMass(a, cp.r_a, b, cp.r_b, c.normal);
+    cp.tangent_mass[0] = effectiveMass(a, cp.r_a, b, cp.r_b, c.tangent[0]);
+    cp.tangent_mass[1] = effectiveMass(a, cp.r_a, b, cp.r_b, c.tangent[1]);
+    cp.normal_impulse = contact.impulses[k].normal;
+    cp.tangent_impulse[0] = contact.impulses[k].tangent[0];
+    cp.tangent_impulse[1] = contact.impulses[k].tangent[1];
+  }
+  if (c.count > 1) {
+    const int all[Manifold::kMaxPoints] = {0, 1, 2, 3};
+    c.normal_block.topLeftCorner(c.count, c.count) = pseudoInverse(coupledMass(c, all, c.count));
+  }
+  return c;
+}
+
+void warmStartContacts(std::vector<ContactConstraint>& constraints,
+                       std::vector<SolverBody>& bodies) {
+  for (ContactConstraint& c : constraints) {
+    Sides s(c, bodies);
+    for (int k = 0; k < c.count; ++k) {
+      ContactConstraintPoint& cp = c.points[k];
+      // A point with a gap is not touching: what it did last substep (hold a landing back) is
+      // not a load to carry, and warm starting it would push the bodies apart before they meet.
+      if (separationNow(c, cp, s) > 0.0) {
+        cp.normal_impulse = 0.0;
+        cp.tangent_impulse[0] = 0.0;
+        cp.tangent_impulse[1] = 0.0;
+        continue;
+      }
+      pushNormal(c, cp, s, cp.normal_impulse);
+      pushAt(cp, s, cp.tangent_impulse[0] * c.tangent[0] + cp.tangent_impulse[1] * c.tangent[1]);
+    }
+  }
+}
+
+void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+                   const ContactPass& pass) {
+  const Real inverse_h = 1.0 / pass.h;
+  for (ContactConstraint& c : constraints) {
+    Sides s(c, bodies);
+    if (pass.use_bias && !c.impact && c.restitution > 0.0) {
+      for (int k = 0; k < c.count; ++k) {
+        const ContactConstraintPoint& cp = c.points[k];
+        const Real vn = normalVelocity(c, cp, s);
+        if (vn < -pass.restitution_threshold && closes(vn, separationNow(c, cp, s), pass.h)) {
+          resolveImpact(c, s, pass.h);
+          break;
+        }
+      }
+    }
+    if (!c.impact) solveNormals(c, s, pass, inverse_h);
+    if (c.friction > 0.0) solveFriction(c, s);
+  }
+}
+
+void storeImpulses(const std::vector<ContactConstraint>& constraints,
+                   std::vector<BodyContact>& contacts) {
+  for (const ContactConstraint& c : constraints) {
+    BodyContact& contact = contacts[c.contact];
+    for (int k = 0; k < c.count; ++k) {
+      contact.impulses[k].normal = c.points[k].normal_impulse;
+      contact.impulses[k].tangent[0] = c.points[k].tangent_impulse[0];
+      contact.impulses[k].tangent[1] = c.points[k].tangent_impulse[1];
+    }
+  }
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,130 @@
+#include "engine/bodies/islands.h"
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+// Calls f(dense a, dense b) for every link of the body graph: shape contacts with a point, and
+// joints between two bodies.
+template <typename F>
+void forEachLink(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, F&& f) {
+  for (const BodyContact& c : ws.contacts) {
+    if (c.key.other != ContactOther::kShape || c.manifold.count == 0) continue;
+    const BodyShape& a = bodies.shapes()[c.key.shape];
+    const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(c.key.b)];
+    if (!a.live || !b.live) continue;
+    f(bodies.denseIndexUnchecked(a.body), bodies.denseIndexUnchecked(b.body));
+  }
+  joints.forEach([&](const auto& kind) {
+    for (const auto& joint : kind) {
+      if (!joint.a.isBody() || !joint.b.isBody()) continue;
+      const auto a = bodies.find(joint.a.body);
+      const auto b = bodies.find(joint.b.body);
+      if (a && b) f(*a, *b);
+    }
+  });
+}
+
+class UnionFind {
+ public:
+  explicit UnionFind(const std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
+  }
+  std::size_t find(std::size_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void join(const std::size_t a, const std::size_t b) {
+    const std::size_t ra = find(a);
+    const std::size_t rb = find(b);
+    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+// Fixed and kinematic bodies do not carry an island across them.
+bool joins(const BodyStore& bodies, const std::size_t i) { return bodies.dynamic(i); }
+
+}  // namespace
+
+void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                const std::size_t body) {
+  if (!bodies.dynamic(body) || bodies.awake(body)) {
+    if (bodies.type(body) != BodyType::kFixed) bodies.setAwake(body, true);
+    return;
+  }
+  UnionFind islands(bodies.size());
+  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+    if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
+  });
+  const std::size_t root = islands.find(body);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies.dynamic(i) && islands.find(i) == root) bodies.setAwake(i, true);
+  }
+}
+
+bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints) {
+  std::vector<std::size_t> to_wake;
+  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+    const bool moving_a = bodies.awake(a) && bodies.type(a) != BodyType::kFixed;
+    const bool moving_b = bodies.awake(b) && bodies.type(b) != BodyType::kFixed;
+    if (moving_a && bodies.dynamic(b) && !bodies.awake(b)) to_wake.push_back(b);
+    if (moving_b && bodies.dynamic(a) && !bodies.awake(a)) to_wake.push_back(a);
+  });
+  for (const std::size_t i : to_wake) wakeIsland(bodies, ws, joints, i);
+  return !to_wake.empty();
+}
+
+void updateSleep(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                 const BodySettings& settings, const Real dt,
+                 const std::vector<std::uint8_t>& busy) {
+  const std::size_t n = bodies.size();
+  // A body is slow when no point of it moves faster than sleep_speed: |v| + |w| reach.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.dynamic(i) || !bodies.awake(i)) continue;
+    const Real speed =
+        bodies.linearVelocity(i).norm() + bodies.angularVelocity(i).norm() * bodies.reach(i);
+    const bool slow =
+        bodies.canSleep(i) && speed < settings.sleep_speed && (i >= busy.size() || !busy[i]);
+    bodies.sleepTime(i) = slow ? bodies.sleepTime(i) + dt : 0.0;
+  }
+  if (!settings.sleep) return;
+  UnionFind islands(n);
+  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+    if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
+    // Touching a moving kinematic body keeps an island awake.
+    if (bodies.type(a) == BodyType::kKinematic || bodies.type(b) == BodyType::kKinematic) {
+      const std::size_t k = bodies.type(a) == BodyType::kKinematic ? a : b;
+      const std::size_t other = k == a ? b : a;
+      if (!bodies.linearVelocity(k).isZero(0.0) || !bodies.angularVelocity(k).isZero(0.0)) {
+        bodies.sleepTime(other) = 0.0;
+      }
+    }
+  });
+  // The least slow time of each island.
+  std::vector<Real> least(n, std::numeric_limits<Real>::infinity());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.dynamic(i) || !bodies.awake(i)) continue;
+    const std::size_t root = islands.find(i);
+    least[root] = std::min(least[root], bodies.sleepTime(i));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.dynamic(i) || !bodies.awake(i)) continue;
+    if (least[islands.find(i)] < settings.time_to_sleep) continue;
+    bodies.setAwake(i, false);
+    bodies.linearVelocity(i).setZero();
+    bodies.angularVelocity(i).setZero();
+  }
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,28 @@
+#pragma once
+// Sleeping by islands: bodies joined by touching contacts or joints form an island (union-find
+// over the dynamic bodies); an island whose every body has been slow for time_to_sleep sleeps
+// (its velocities zeroed, not stepped) until something wakes it: a request on one of its bodies,
+// an awake body or a fast particle touching it. Sleeping changes no hash rule: a sleeping body's
+// state is hashed like any other.
+
+#include <cstddef>
+
+#include "engine/bodies/body_workspace.h"
+#include "mass_aggregate_sim/engine/bodies/body_settings.h"
+#include "mass_aggregate_sim/engine/bodies/body_store.h"
+#include "mass_aggregate_sim/engine/joints/joints.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+
+// Wakes the island of dense body `body`: every body reached through contacts and joints.
+void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, std::size_t body);
+// Wakes the sleeping islands an awake body touches or is joined to; true when any woke.
+bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints);
+// After a step: each awake body's slow time, then the islands that may sleep. `busy` marks the
+// bodies a fast particle touches (kept awake).
+void updateSleep(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                 const BodySettings& settings, Real dt, const std::vector<std::uint8_t>& busy);
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,299 @@
+// World: the requests on rigid bodies and joints, each validated before anything changes; every
+// one wakes what it touches.
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "engine/bodies/body_collision.h"
+#include "engine/bodies/body_workspace.h"
+#include "engine/bodies/contact_solver.h"
+#include "engine/bodies/islands.h"
+#include "mass_aggregate_sim/engine/bodies/mass_properties.h"
+#include "mass_aggregate_sim/engine/world/world.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+Status checkSpec(const BodySpec& spec) {
+  if (!spec.pose.position.allFinite()) return Status::error("pose position is not finite");
+  if (!spec.pose.rotation.coeffs().allFinite() ||
+      std::abs(spec.pose.rotation.norm() - 1.0) > 1e-6) {
+    return Status::error("pose orientation must be a unit quaternion (|q| within 1e-6 of 1)");
+  }
+  if (!spec.linear_velocity.allFinite()) return Status::error("linear velocity is not finite");
+  if (!spec.angular_velocity.allFinite()) return Status::error("angular velocity is not finite");
+  for (const auto& [value, name] :
+       {std::pair<Real, const char*>{spec.linear_damping, "linear damping"},
+        {spec.angular_damping, "angular damping"}}) {
+    if (!std::isfinite(value) || value < 0.0) {
+      return Status::error(std::string(name) + " must be finite and >= 0");
+    }
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<BodyId> World::addBody(const BodySpec& spec) {
+  const Status valid = checkSpec(spec);
+  if (!valid) return valid;
+  const Result<MassProperties> mass = computeMassProperties(spec.shapes, spec.mass);
+  if (!mass) return mass.status();
+  BodySpec normalised = spec;
+  normalised.pose.rotation.normalize();
+  return bodies_.add(normalised, *mass);
+}
+
+Status World::removeBody(const BodyId id) {
+  const auto dense = bodies_.find(id);
+  if (!dense) return Status::error("body: " + bodies_.describeInvalid(id));
+  BodyWorkspace& ws = *body_ws_;
+  wakeIsland(bodies_, ws, joints_, *dense);
+  joints_.forEach([&](auto& kind) {
+    for (const auto& joint : kind) {
+      if (joint.a.body == id || joint.b.body == id) wakeJointEnds(joint.a, joint.b);
+    }
+    kind.erase(std::remove_if(kind.begin(), kind.end(),
+                              [&](const auto& joint) {
+                                return joint.a.body == id || joint.b.body == id;
+                              }),
+               kind.end());
+  });
+  // Its contacts go, and whatever rested on it wakes.
+  const std::vector<ShapeIndex>& shapes = bodies_.shapesOf(*dense);
+  const auto owned = [&](const ShapeIndex s) {
+    return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
+  };
+  for (const BodyContact& c : ws.contacts) {
+    if (c.key.other != ContactOther::kShape) continue;
+    const bool a = owned(c.key.shape);
+    const bool b = owned(static_cast<ShapeIndex>(c.key.b));
+    if (a == b) continue;
+    const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
+    wakeIsland(bodies_, ws, joints_, bodies_.denseIndexUnchecked(bodies_.shapes()[other].body));
+  }
+  ws.contacts.erase(std::remove_if(ws.contacts.begin(), ws.contacts.end(),
+                                   [&](const BodyContact& c) {
+                                     return owned(c.key.shape) ||
+                                            (c.key.other == ContactOther::kShape &&
+                                             owned(static_cast<ShapeIndex>(c.key.b)));
+                                   }),
+                    ws.contacts.end());
+  removeBodyProxies(bodies_, *dense, ws);
+  return bodies_.remove(id);
+}
+
+Result<std::size_t> World::bodyForRequest(const BodyId id) {
+  const auto dense = bodies_.find(id);
+  if (!dense) return Status::error("body: " + bodies_.describeInvalid(id));
+  wakeIsland(bodies_, *body_ws_, joints_, *dense);
+  return *dense;
+}
+
+Status World::setBodyPose(const BodyId id, const Transform& pose) {
+  if (!pose.position.allFinite()) return Status::error("pose position is not finite");
+  if (!pose.rotation.coeffs().allFinite() || std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
+    return Status::error("pose orientation must be a unit quaternion (|q| within 1e-6 of 1)");
+  }
+  const auto dense = bodyForRequest(id);
+  if (!dense) return dense.status();
+  const Transform mass_pose = Transform{pose.position, pose.rotation.normalized()} *
+                              bodies_.massFrame(*dense);
+  bodies_.position(*dense) = mass_pose.position;
+  bodies_.orientation(*dense) = mass_pose.rotation.normalized();
+  bodies_.refreshWorldInertia(*dense);
+  return Status::ok();
+}
+
+Status World::setBodyVelocity(const BodyId id, const Vec3& linear, const Vec3& angular) {
+  if (!linear.allFinite() || !angular.allFinite()) {
+    return Status::error("velocity is not finite");
+  }
+  const auto dense = bodyForRequest(id);
+  if (!dense) return dense.status();
+  if (bodies_.type(*dense) == BodyType::kFixed && !(linear.isZero(0.0) && angular.isZero(0.0))) {
+    return Status::error("body " + id.str() + " is fixed: its velocity stays zero");
+  }
+  bodies_.linearVelocity(*dense) = linear;
+  bodies_.angularVelocity(*dense) = angular;
+  return Status::ok();
+}
+
+Status World::addBodyForce(const BodyId id, const Vec3& force, const Vec3& point) {
+  if (!force.allFinite()) return Status::error("force is not finite");
+  if (!point.allFinite()) return Status::error("point is not finite");
+  const auto dense = bodyForRequest(id);
+  if (!dense) return dense.status();
+  bodies_.force(*dense) += force;
+  bodies_.torque(*dense) += (point - bodies_.position(*dense)).cross(force);
+  return Status::ok();
+}
+
+Status World::addBodyTorque(const BodyId id, const Vec3& torque) {
+  if (!torque.allFinite()) return Status::error("torque is not finite");
+  const auto dense = bodyForRequest(id);
+  if (!dense) return dense.status();
+  bodies_.torque(*dense) += torque;
+  return Status::ok();
+}
+
+Status World::applyBodyImpulse(const BodyId id, const Vec3& impulse, const Vec3& point,
+                               const Vec3& angular_impulse) {
+  if (!impulse.allFinite()) return Status::error("impulse is not finite");
+  if (!point.allFinite()) return Status::error("point is not finite");
+  if (!angular_impulse.allFinite()) return Status::error("angular impulse is not finite");
+  const auto found = bodies_.find(id);
+  if (found && !bodies_.dynamic(*found)) {
+    return Status::error("body " + id.str() + " is not dynamic: an impulse cannot move it");
+  }
+  const auto dense = bodyForRequest(id);
+  if (!dense) return dense.status();
+  // dv = J / m, dw = I^-1 ((p - c) x J + L)
+  bodies_.linearVelocity(*dense) += bodies_.inverseMass(*dense) * impulse;
+  bodies_.refreshWorldInertia(*dense);
+  bodies_.angularVelocity(*dense) +=
+      bodies_.worldInverseInertia(*dense) *
+      ((point - bodies_.position(*dense)).cross(impulse) + angular_impulse);
+  return Status::ok();
+}
+
+Status World::wakeBody(const BodyId id) { return bodyForRequest(id).status(); }
+
+Status World::setBodySettings(const BodySettings& settings) {
+  const Status valid = validateBodySettings(settings);
+  if (!valid) return valid;
+  body_settings_ = settings;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.type(i) != BodyType::kFixed) bodies_.setAwake(i, true);
+  }
+  return Status::ok();
+}
+
+std::vector<BodyContactReport> World::bodyContacts() const {
+  std::vector<BodyContactReport> out;
+  if (bodies_.empty()) return out;
+  for (const BodyContact& c : body_ws_->contacts) {
+    if (c.manifold.count == 0) continue;
+    BodyContactReport r;
+    r.body = bodies_.shapes()[c.key.shape].body;
+    r.normal = c.manifold.normal;
+    switch (c.key.other) {
+      case ContactOther::kShape:
+        r.other = BodyContactReport::Other::kBody;
+        r.other_body = bodies_.shapes()[static_cast<ShapeIndex>(c.key.b)].body;
+        break;
+      case ContactOther::kCollider:
+        r.other = BodyContactReport::Other::kCollider;
+        r.collider = static_cast<ColliderId>(c.key.b);
+        break;
+      case ContactOther::kParticle:
+        r.other = BodyContactReport::Other::kParticle;
+        r.particle = ParticleId::fromPacked(c.key.b);
+        break;
+    }
+    Vec3 t0;
+    Vec3 t1;
+    tangentBasis(c.manifold.normal, t0, t1);
+    for (int k = 0; k < c.manifold.count; ++k) {
+      BodyContactReport::Point p;
+      p.position = c.manifold.points[k].point;
+      p.separation = c.manifold.points[k].separation;
+      p.normal_impulse = c.impulses[k].normal;
+      p.friction_impulse = c.impulses[k].tangent[0] * t0 + c.impulses[k].tangent[1] * t1;
+      r.points.push_back(p);
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+// --- joints ---
+
+Status World::checkJointEnds(const JointEnd& a, const JointEnd& b, const bool turns) const {
+  const auto check = [&](const JointEnd& end, const char* name) -> Status {
+    if (end.isBody() && end.isParticle()) {
+      return Status::error(std::string(name) + ": an end is a body or a particle, not both");
+    }
+    if (!end.point.allFinite()) return Status::error(std::string(name) + ": point is not finite");
+    if (end.isBody()) return bodies_.checkReference(end.body, name);
+    if (end.isParticle()) {
+      if (turns) {
+        return Status::error(std::string(name) +
+                             ": a particle has no orientation for a joint that holds rotation");
+      }
+      return particles_.checkReference(end.particle, name);
+    }
+    return Status::ok();
+  };
+  Status valid = check(a, "a");
+  if (valid) valid = check(b, "b");
+  if (!valid) return valid;
+  if (!a.isBody() && !b.isBody()) {
+    return Status::error(
+        "a joint needs a body at one end at least (particles alone are joined by links)");
+  }
+  if (a.isBody() && b.isBody() && a.body == b.body) {
+    return Status::error("a joint's ends are on the same body");
+  }
+  const auto still = [&](const JointEnd& end) {
+    if (end.isBody()) return bodies_.type(bodies_.denseIndexUnchecked(end.body)) == BodyType::kFixed;
+    return !end.isParticle();
+  };
+  if (still(a) && still(b)) return Status::error("neither end of the joint can move");
+  return Status::ok();
+}
+
+void World::wakeJointEnds(const JointEnd& a, const JointEnd& b) {
+  for (const JointEnd* end : {&a, &b}) {
+    if (!end->isBody()) continue;
+    const auto dense = bodies_.find(end->body);
+    if (dense) wakeIsland(bodies_, *body_ws_, joints_, *dense);
+  }
+}
+
+Status World::removeJoint(const JointId id) {
+  bool removed = false;
+  joints_.forEach([&](auto& kind) {
+    const auto it =
+        std::find_if(kind.begin(), kind.end(), [id](const auto& joint) { return joint.id == id; });
+    if (it == kind.end()) return;
+    wakeJointEnds(it->a, it->b);
+    kind.erase(it);
+    removed = true;
+  });
+  if (!removed) return Status::error("no joint with id " + std::to_string(id));
+  return Status::ok();
+}
+
+std::vector<JointReaction> World::jointReactions() const {
+  std::vector<JointReaction> out;
+  const Real h = config_.dt / static_cast<Real>(substeps_used_);
+  joints_.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    for (const auto& joint : kind) out.push_back(JointKind<Kind>::reaction(joint, h));
+  });
+  std::sort(out.begin(), out.end(),
+            [](const JointReaction& x, const JointReaction& y) { return x.id < y.id; });
+  return out;
+}
+
+Status World::setHingeMotor(const JointId id, const bool enabled, const Real speed,
+                            const Real max_torque) {
+  if (!std::isfinite(speed)) return Status::error("motor speed is not finite");
+  if (!std::isfinite(max_torque) || max_torque < 0.0) {
+    return Status::error("motor max torque must be finite and >= 0");
+  }
+  auto& hinges = joints_.of<HingeJoint>();
+  const auto it =
+      std::find_if(hinges.begin(), hinges.end(), [id](const HingeJoint& j) { return j.id == id; });
+  if (it == hinges.end()) return Status::error("no hinge joint with id " + std::to_string(id));
+  it->motor = enabled;
+  it->motor_speed = speed;
+  it->max_motor_torque = max_torque;
+  wakeJointEnds(it->a, it->b);
+  return Status::ok();
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,188 @@
+// Bodies on the ground (issue 14's acceptance tests 4-7): a cube at rest, a cube dropped flat
+// that bounces, a Coulomb slide, inclines that hold, slide and roll. Analytic answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "body_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+using namespace test_bodies;
+
+// The sum of the contacts' normal impulses on body id over the last substep, as a force.
+Real normalForce(const World& world, const BodyId id) {
+  Real impulse = 0.0;
+  for (const BodyContactReport& c : world.bodyContacts()) {
+    if (c.body != id) continue;
+    for (const auto& p : c.points) impulse += p.normal_impulse;
+  }
+  return impulse / (world.config().dt / world.bodySettings().substeps);
+}
+
+Real maxOverlap(const World& world) {
+  Real worst = 0.0;
+  for (const BodyContactReport& c : world.bodyContacts()) {
+    for (const auto& p : c.points) worst = std::max(worst, -p.separation);
+  }
+  return worst;
+}
+
+TEST(BodyContact, ACubeRestsOnThePlane) {
+  World world(config());
+  addGround(world);
+  const Real m = 3.0;
+  const BodyId id = *world.addBody(body(box(Vec3::Constant(0.5)), m, Vec3(0.0, 0.0, 0.5)));
+  const std::size_t i = *world.bodies().find(id);
+  Real force_sum = 0.0;
+  int force_steps = 0;
+  Real worst_overlap = 0.0;
+  for (int step = 0; step < 600; ++step) {
+    world.step();
+    if (step >= 60) {
+      force_sum += normalForce(world, id);
+      ++force_steps;
+    }
+    worst_overlap = std::max(worst_overlap, maxOverlap(world));
+  }
+  const Vec3 drift = world.bodies().position(i) - Vec3(0.0, 0.0, 0.5);
+  std::printf("[ rest ] drift %.2e m, overlap %.2e m, |w| %.2e, KE %.2e J, mean force / mg %.6f\n",
+              drift.norm(), worst_overlap, world.bodies().angularVelocity(i).norm(),
+              world.kineticEnergy(), force_sum / force_steps / (m * kG));
+  EXPECT_LT(drift.norm(), 1e-3);
+  EXPECT_LT(worst_overlap, world.bodySettings().linear_slop);
+  EXPECT_LT(world.bodies().angularVelocity(i).norm(), 1e-3);
+  EXPECT_LT(world.kineticEnergy(), 1e-6);
+  EXPECT_NEAR(force_sum / force_steps, m * kG, 0.01 * m * kG);
+}
+
+TEST(BodyContact, ACubeDroppedFlatBouncesToTheQuarterHeight) {
+  World world(config());
+  addGround(world, Material{0.5, 0.5});
+  const BodyId id = *world.addBody(
+      body(box(Vec3::Constant(0.5), Material{0.5, 0.5}), 1.0, Vec3(0.0, 0.0, 1.5)));
+  const std::size_t i = *world.bodies().find(id);
+  Real rebound = 0.0;
+  Real apex = 0.0;
+  Real worst_w = 0.0;
+  bool bounced = false;
+  bool falling_again = false;
+  for (int step = 0; step < 600; ++step) {
+    world.step();
+    const Vec3& v = world.bodies().linearVelocity(i);
+    worst_w = std::max(worst_w, world.bodies().angularVelocity(i).norm());
+    if (!bounced && v.z() > 0.0) {
+      // The speed it left the ground with: in flight, v^2 + 2 g (z - 0.5) stays what it was.
+      bounced = true;
+      rebound = std::sqrt(v.z() * v.z() + 2.0 * kG * (world.bodies().position(i).z() - 0.5));
+    }
+    if (bounced && !falling_again) {
+      apex = std::max(apex, world.bodies().position(i).z() - 0.5);
+      if (v.z() < 0.0) falling_again = true;
+    }
+  }
+  // sqrt(2 g 1 m) = 4.429 m/s in, e = 0.5: 2.215 m/s out, apex 2.215^2 / 2g = 0.25 m.
+  std::printf("[ bounce ] rebound %.4f m/s, apex %.4f m, |w| %.2e, final KE %.2e J\n", rebound,
+              apex, worst_w, world.kineticEnergy());
+  EXPECT_NEAR(rebound, 2.215, 0.02 * 2.215);
+  EXPECT_NEAR(apex, 0.25, 0.02 * 0.25);
+  EXPECT_LT(worst_w, 1e-3);
+  EXPECT_LT(world.bodies().linearVelocity(i).norm(), world.bodySettings().restitution_threshold);
+  EXPECT_LT(world.kineticEnergy(), 1e-6);
+}
+
+TEST(BodyContact, ACoulombSlideStopsWhereFrictionSays) {
+  World world(config());
+  addGround(world, Material{0.0, 0.5});
+  BodySpec spec = body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, 0.5));
+  spec.linear_velocity = Vec3(5.0, 0.0, 0.0);
+  const BodyId id = *world.addBody(spec);
+  const std::size_t i = *world.bodies().find(id);
+  Real stop_time = -1.0;
+  Real worst_w = 0.0;
+  for (int step = 1; step <= 120; ++step) {
+    world.step();
+    worst_w = std::max(worst_w, world.bodies().angularVelocity(i).norm());
+    // Stopped: below 1 % of the speed it started with (static friction then holds it).
+    if (stop_time < 0.0 && world.bodies().linearVelocity(i).x() < 0.05) stop_time = step / 60.0;
+  }
+  // v^2 / (2 mu g) = 2.548 m after v / (mu g) = 1.019 s.
+  const Real distance = world.bodies().position(i).x();
+  std::printf("[ slide ] %.4f m in %.4f s, |w| at most %.2e\n", distance, stop_time, worst_w);
+  EXPECT_NEAR(distance, 2.548, 0.02 * 2.548);
+  EXPECT_NEAR(stop_time, 1.019, 0.02 * 1.019);
+  EXPECT_LT(worst_w, 0.05);  // no tumbling
+}
+
+// The plane tilted by `degrees` about y, rising along -x (down the slope is +x).
+Vec3 inclineNormal(const Real degrees) {
+  const Real a = degrees * M_PI / 180.0;
+  return Vec3(std::sin(a), 0.0, std::cos(a));
+}
+
+// Down the slope: gravity's part along the plane, g sin a (cos a, 0, -sin a).
+Vec3 downSlope(const Real degrees) {
+  const Real a = degrees * M_PI / 180.0;
+  return Vec3(std::cos(a), 0.0, -std::sin(a));
+}
+
+// A body resting on the incline at the origin, its centre `height` above the plane.
+Vec3 onIncline(const Real degrees, const Real height) {
+  return height * inclineNormal(degrees);
+}
+
+TEST(BodyContact, ABoxHoldsOnAGentleIncline) {
+  World world(config());
+  addGround(world, Material{0.0, 0.5}, inclineNormal(20.0));
+  const Quat tilt(Eigen::AngleAxisd(20.0 * M_PI / 180.0, Vec3::UnitY()));
+  const BodyId id = *world.addBody(
+      body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, onIncline(20.0, 0.5), tilt));
+  const std::size_t i = *world.bodies().find(id);
+  const Vec3 start = world.bodies().position(i);
+  for (int step = 0; step < 300; ++step) world.step();
+  const Real creep = (world.bodies().position(i) - start).norm();
+  std::printf("[ incline ] box at 20 deg, mu 0.5: crept %.2e m in 5 s\n", creep);
+  EXPECT_LT(creep, 1e-3);
+}
+
+TEST(BodyContact, ABoxSlidesDownASteepSlipperyIncline) {
+  World world(config());
+  addGround(world, Material{0.0, 0.1}, inclineNormal(30.0));
+  const Quat tilt(Eigen::AngleAxisd(30.0 * M_PI / 180.0, Vec3::UnitY()));
+  const BodyId id = *world.addBody(
+      body(box(Vec3::Constant(0.5), Material{0.0, 0.1}), 1.0, onIncline(30.0, 0.5), tilt));
+  const std::size_t i = *world.bodies().find(id);
+  for (int step = 0; step < 30; ++step) world.step();  // settle onto the slope
+  const Vec3 down_slope = downSlope(30.0);
+  const Real v0 = world.bodies().linearVelocity(i).dot(down_slope);
+  for (int step = 0; step < 60; ++step) world.step();
+  const Real a = (world.bodies().linearVelocity(i).dot(down_slope) - v0) / 1.0;
+  // g (sin 30 - 0.1 cos 30) = 4.055 m/s^2
+  std::printf("[ incline ] box at 30 deg, mu 0.1: a = %.4f m/s^2\n", a);
+  EXPECT_NEAR(a, 4.055, 0.02 * 4.055);
+}
+
+TEST(BodyContact, ASphereRollsDownAnIncline) {
+  World world(config());
+  addGround(world, Material{0.0, 0.5}, inclineNormal(30.0));
+  const Real r = 0.25;
+  const BodyId id =
+      *world.addBody(body(sphere(r, Material{0.0, 0.5}), 1.0, onIncline(30.0, r)));
+  const std::size_t i = *world.bodies().find(id);
+  const Vec3 start = world.bodies().position(i);
+  for (int step = 0; step < 60; ++step) world.step();
+  const Vec3 down_slope = downSlope(30.0);
+  // a = 5/7 g sin 30 = 3.504 m/s^2: 1.752 m after 1 s, rolling (w = v / r).
+  const Real distance = (world.bodies().position(i) - start).dot(down_slope);
+  const Real v = world.bodies().linearVelocity(i).norm();
+  const Real w = world.bodies().angularVelocity(i).norm();
+  std::printf("[ roll ] %.4f m after 1 s, v %.4f m/s, w r %.4f m/s\n", distance, v, w * r);
+  EXPECT_NEAR(distance, 1.752, 0.01 * 1.752);
+  EXPECT_NEAR(w * r, v, 0.01 * v);
+}
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,62 @@
+#pragma once
+// Bodies the acceptance tests build: z up, g = 9.81, 60 Hz unless a test says otherwise.
+
+#include <cmath>
+
+#include "mass_aggregate_sim/engine/world/world.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace test_bodies {
+
+constexpr Real kG = 9.81;
+
+inline WorldConfig config(const Real gravity = kG) {
+  WorldConfig c;
+  c.dt = 1.0 / 60.0;
+  c.gravity = Vec3(0.0, 0.0, -gravity);
+  return c;
+}
+
+inline BodyShapeSpec box(const Vec3& half_extents, const Material& material = {0.0, 0.5}) {
+  BodyShapeSpec s;
+  s.geometry = BoxShape{half_extents};
+  s.material = material;
+  return s;
+}
+
+inline BodyShapeSpec sphere(const Real radius, const Material& material = {0.0, 0.5}) {
+  BodyShapeSpec s;
+  s.geometry = SphereShape{radius};
+  s.material = material;
+  return s;
+}
+
+// A dynamic body of one shape, mass given, at position with orientation q.
+inline BodySpec body(const BodyShapeSpec& shape, const Real mass, const Vec3& position,
+                     const Quat& q = Quat::Identity()) {
+  BodySpec spec;
+  spec.shapes = {shape};
+  spec.mass = mass;
+  spec.pose.position = position;
+  spec.pose.rotation = q;
+  return spec;
+}
+
+// The ground: the plane z = 0 with the given material.
+inline void addGround(World& world, const Material& material = {0.0, 0.5},
+                      const Vec3& normal = Vec3::UnitZ()) {
+  PlaneCollider ground;
+  ground.normal = normal;
+  ground.offset = 0.0;
+  ground.material = material;
+  world.addCollider(ground);
+}
+
+inline Real angleBetween(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+}  // namespace test_bodies
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,95 @@
+// Stacks and pyramids of unit cubes with the default settings (issue 14's acceptance tests 8 and
+// 9): after 10 s the top has moved less than 1 cm and the structure is at rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "body_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+using namespace test_bodies;
+
+struct Structure {
+  World world{config()};
+  std::vector<BodyId> boxes;
+};
+
+// n unit cubes of 1 kg in a column, touching.
+void stack(Structure& s, const int n) {
+  addGround(s.world);
+  for (int k = 0; k < n; ++k) {
+    s.boxes.push_back(*s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k))));
+  }
+}
+
+// Box2D's pyramid in the x-z plane: row i (0 at the bottom) has base - i unit cubes, each row
+// shifted by half a box, touching.
+void pyramid(Structure& s, const int base) {
+  addGround(s.world);
+  for (int i = 0; i < base; ++i) {
+    for (int j = i; j < base; ++j) {
+      const Real x = (i + 1.0) * 0.5 + (j - i) * 1.0 - 0.5 * base;
+      s.boxes.push_back(
+          *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(x, 0.0, 0.5 + i))));
+    }
+  }
+}
+
+void expectStands(Structure& s, const char* what) {
+  const BodyStore& bodies = s.world.bodies();
+  const std::size_t top = *bodies.find(s.boxes.back());
+  const Vec3 start = bodies.position(top);
+  for (int step = 0; step < 600; ++step) s.world.step();
+  const Real moved = (bodies.position(top) - start).norm();
+  int sleeping = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) sleeping += bodies.awake(i) ? 0 : 1;
+  std::printf("[ stack ] %s: top moved %.2e m, KE %.2e J, %d of %zu asleep\n", what, moved,
+              s.world.kineticEnergy(), sleeping, bodies.size());
+  EXPECT_LT(moved, 0.01) << what;
+  EXPECT_LT(s.world.kineticEnergy(), 1e-3) << what;
+  EXPECT_EQ(s.world.divergenceCount(), 0u) << what;
+}
+
+TEST(Stacks, TenCubesStand) {
+  Structure s;
+  stack(s, 10);
+  expectStands(s, "stack of 10");
+}
+
+TEST(Stacks, TwentyCubesStand) {
+  Structure s;
+  stack(s, 20);
+  expectStands(s, "stack of 20");
+}
+
+TEST(Stacks, TwentyCubesStandAwake) {
+  // Without sleeping the solver alone must hold them.
+  Structure s;
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(s.world.setBodySettings(settings));
+  stack(s, 20);
+  expectStands(s, "stack of 20, never asleep");
+}
+
+TEST(Stacks, PyramidOfTwentyStands) {
+  Structure s;
+  pyramid(s, 20);
+  ASSERT_EQ(s.boxes.size(), 210u);
+  expectStands(s, "pyramid of 210");
+}
+
+TEST(Stacks, PyramidOfAHundredStands) {
+  Structure s;
+  pyramid(s, 100);
+  ASSERT_EQ(s.boxes.size(), 5050u);
+  expectStands(s, "pyramid of 5050");
+}
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim

@@ -1,0 +1,219 @@
+// Joints (issue 14's acceptance tests 10 and 11): a hinged rod's period, its anchor, its energy,
+// hinge limits and motor; Newton's cradle on ball joints; fixed and distance joints; a particle
+// holding a body.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "../bodies/body_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+using namespace test_bodies;
+
+// A thin rod 1 m long, 1 kg, hanging from a hinge about y at its top end, turned by `angle` about
+// y. Returns the rod; the hinge's world anchor is the origin.
+BodyId hangRod(World& world, const Real angle, HingeJoint hinge = HingeJoint{}) {
+  const Quat turn(Eigen::AngleAxisd(angle, Vec3::UnitY()));
+  const BodyId rod =
+      *world.addBody(body(box(Vec3(0.005, 0.005, 0.5)), 1.0, turn * Vec3(0.0, 0.0, -0.5), turn));
+  hinge.a = JointEnd::inWorld(Vec3::Zero());
+  hinge.b = JointEnd::onBody(rod, Vec3(0.0, 0.0, 0.5));
+  hinge.axis = Vec3::UnitY();
+  EXPECT_TRUE(world.addJoint(hinge));
+  return rod;
+}
+
+TEST(HingeJoint, ARodSwingsWithThePendulumsPeriod) {
+  World world(config());
+  const Real amplitude = 5.0 * M_PI / 180.0;
+  const BodyId rod = hangRod(world, amplitude);
+  const std::size_t i = *world.bodies().find(rod);
+  // The tip's x crosses zero going the same way once per period.
+  std::vector<Real> crossings;
+  Real previous_x = world.bodies().position(i).x();
+  Real worst_drift = 0.0;
+  const Real e0 = world.totalEnergy();
+  Real worst_gain = 0.0;
+  for (int step = 1; step <= 20 * 60; ++step) {
+    world.step();
+    const Real x = world.bodies().position(i).x();
+    if (previous_x > 0.0 && x <= 0.0) {
+      // Linear interpolation of the crossing time.
+      crossings.push_back((step - 1 + previous_x / (previous_x - x)) / 60.0);
+    }
+    previous_x = x;
+    const Vec3 anchor = world.bodies().pose(i).apply(Vec3(0.0, 0.0, 0.5));
+    worst_drift = std::max(worst_drift, anchor.norm());
+    worst_gain = std::max(worst_gain, world.totalEnergy() - e0);
+  }
+  ASSERT_GE(crossings.size(), 3u);
+  const Real period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  // T = 2 pi sqrt(I / (m g d)), I = m (L^2 + w^2) / 3 about the end (w = 1 cm: negligible),
+  // d = L / 2, with the amplitude's correction 1 + theta^2 / 16.
+  const Real l = 1.0;
+  const Real inertia = (l * l + 0.01 * 0.01) / 3.0;
+  const Real exact = 2.0 * M_PI * std::sqrt(inertia / (kG * 0.5 * l)) *
+                     (1.0 + amplitude * amplitude / 16.0);
+  std::printf("[ pendulum ] period %.5f s (exact %.5f), anchor drift %.2e m, energy gain %.2e J\n",
+              period, exact, worst_drift, worst_gain);
+  EXPECT_NEAR(period, exact, 0.005 * exact);
+  EXPECT_NEAR(exact, 1.6388, 0.001);
+  EXPECT_LT(worst_drift, 1e-3);
+  EXPECT_LT(worst_gain, 1e-6);
+}
+
+TEST(HingeJoint, LimitsHold) {
+  World world(config());
+  HingeJoint hinge;
+  hinge.limit = true;
+  hinge.lower = -0.2;
+  hinge.upper = 0.3;
+  const BodyId rod = hangRod(world, 0.0, hinge);
+  const std::size_t i = *world.bodies().find(rod);
+  // Kick it hard both ways: the angle stays within the limits (a little slop while stopping).
+  ASSERT_TRUE(world.setBodyVelocity(rod, Vec3(3.0, 0.0, 0.0), Vec3(0.0, -6.0, 0.0)));
+  Real lowest = 0.0;
+  Real highest = 0.0;
+  for (int step = 0; step < 240; ++step) {
+    if (step == 120) {
+      ASSERT_TRUE(world.setBodyVelocity(rod, Vec3(-3.0, 0.0, 0.0), Vec3(0.0, 6.0, 0.0)));
+    }
+    world.step();
+    // The rod's angle about y: its axis' direction (from the hinge down) turned from -z.
+    const Vec3 down = world.bodies().pose(i).rotation * Vec3(0.0, 0.0, -1.0);
+    const Real angle = std::atan2(-down.x(), -down.z());
+    lowest = std::min(lowest, angle);
+    highest = std::max(highest, angle);
+  }
+  std::printf("[ hinge ] angle range [%.4f, %.4f] for limits [-0.2, 0.3]\n", lowest, highest);
+  EXPECT_GT(lowest, -0.2 - 0.02);
+  EXPECT_LT(highest, 0.3 + 0.02);
+  EXPECT_LT(lowest, -0.15);  // it reached both
+  EXPECT_GT(highest, 0.25);
+}
+
+TEST(HingeJoint, AMotorReachesItsSpeedWithinItsTorque) {
+  World world(config(0.0));
+  const BodyId wheel =
+      *world.addBody(body(box(Vec3(0.5, 0.5, 0.1)), 2.0, Vec3::Zero()));  // I_z = 1/3 kg m^2
+  HingeJoint hinge;
+  hinge.a = JointEnd::inWorld(Vec3::Zero());
+  hinge.b = JointEnd::onBody(wheel);
+  hinge.axis = Vec3::UnitZ();
+  hinge.motor = true;
+  hinge.motor_speed = 4.0;
+  hinge.max_motor_torque = 1.0;
+  const JointId joint = *world.addJoint(hinge);
+  const std::size_t i = *world.bodies().find(wheel);
+  // At 1 N m on I = 1/3, w grows by 3 rad/s^2: 4 rad/s after 1.333 s, not before.
+  for (int step = 0; step < 60; ++step) world.step();
+  EXPECT_NEAR(world.bodies().angularVelocity(i).z(), 3.0, 0.01);
+  for (int step = 0; step < 60; ++step) world.step();
+  EXPECT_NEAR(world.bodies().angularVelocity(i).z(), 4.0, 1e-6);
+  // The reaction torque is the motor's only while it accelerates; at speed, none is needed.
+  EXPECT_LT(world.jointReactions()[0].torque.norm(), 1e-6);
+  ASSERT_TRUE(world.setHingeMotor(joint, true, -2.0, 10.0));
+  for (int step = 0; step < 60; ++step) world.step();
+  EXPECT_NEAR(world.bodies().angularVelocity(i).z(), -2.0, 1e-6);
+}
+
+// Five 1 kg balls of radius 0.1 m in a row along x, 1 mm apart, restitution 1, the first moving
+// at `speed`; hung on ball joints 1 m below their anchors, or free (no gravity, no joints).
+struct Cradle {
+  World world;
+  std::vector<BodyId> balls;
+};
+
+Cradle cradle(const bool hung, const Real speed) {
+  Cradle c{World(config(hung ? kG : 0.0)), {}};
+  const Real r = 0.1;
+  const Real gap = 0.001;
+  const Real length = 1.0;
+  for (int k = 0; k < 5; ++k) {
+    const Real x = k * (2.0 * r + gap);
+    const BodyId ball =
+        *c.world.addBody(body(sphere(r, Material{1.0, 0.0}), 1.0, Vec3(x, 0.0, -length)));
+    if (hung) {
+      EXPECT_TRUE(c.world.addJoint(BallJoint{JointEnd::inWorld(Vec3(x, 0.0, 0.0)),
+                                             JointEnd::onBody(ball, Vec3(0.0, 0.0, length))}));
+    }
+    c.balls.push_back(ball);
+  }
+  EXPECT_TRUE(c.world.setBodyVelocity(c.balls[0], Vec3(speed, 0.0, 0.0), Vec3::Zero()));
+  return c;
+}
+
+std::vector<Real> speeds(const Cradle& c) {
+  std::vector<Real> v;
+  for (const BodyId b : c.balls) {
+    v.push_back(c.world.bodies().linearVelocity(*c.world.bodies().find(b)).x());
+  }
+  return v;
+}
+
+TEST(BallJoint, NewtonsCradlePassesTheBallAlong) {
+  const Real speed = 2.0;  // above the 1 m/s restitution threshold
+  Cradle c = cradle(true, speed);
+  for (int step = 0; step < 3; ++step) c.world.step();
+  const std::vector<Real> v = speeds(c);
+  std::printf("[ cradle ] velocities %.4f %.4f %.4f %.4f %.4f\n", v[0], v[1], v[2], v[3], v[4]);
+  EXPECT_GE(v[4], 0.95 * speed);
+  for (int k = 0; k < 4; ++k) EXPECT_LT(std::abs(v[k]), 0.05 * speed) << "ball " << k;
+}
+
+TEST(BallJoint, TheImpactsOfACradleConserveMomentum) {
+  // Without the strings' pull (no gravity, no joints) nothing but the impacts acts: momentum
+  // to round-off, and the last ball leaves with the speed.
+  const Real speed = 2.0;
+  Cradle c = cradle(false, speed);
+  const Vec3 p0 = c.world.linearMomentum();
+  for (int step = 0; step < 3; ++step) c.world.step();
+  const std::vector<Real> v = speeds(c);
+  EXPECT_LT((c.world.linearMomentum() - p0).norm(), 1e-9);
+  EXPECT_GE(v[4], 0.95 * speed);
+  for (int k = 0; k < 4; ++k) EXPECT_LT(std::abs(v[k]), 0.05 * speed) << "ball " << k;
+}
+
+TEST(FixedJoint, HoldsTwoBodiesAsOne) {
+  World world(config());
+  const BodyId a = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.0, 0.0, 0.0)));
+  const BodyId b = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.5, 0.0, 0.0)));
+  ASSERT_TRUE(world.addJoint(FixedJoint{JointEnd::onBody(a), JointEnd::onBody(b, Vec3(-0.5, 0, 0))}));
+  ASSERT_TRUE(world.setBodyVelocity(a, Vec3(0.0, 0.0, 2.0), Vec3(0.0, 3.0, 0.0)));
+  for (int step = 0; step < 120; ++step) world.step();
+  const Transform pa = world.bodies().pose(*world.bodies().find(a));
+  const Transform pb = world.bodies().pose(*world.bodies().find(b));
+  const Transform relative = pa.inverse() * pb;
+  EXPECT_LT((relative.position - Vec3(0.5, 0.0, 0.0)).norm(), 1e-3);
+  EXPECT_LT(relative.rotation.angularDistance(Quat::Identity()), 1e-3);
+}
+
+TEST(DistanceJoint, ARopeOfParticlesHoldsABox) {
+  // A particle held to the world by a rod, the box hanging from the particle by a cable: the
+  // box stays 1.5 m below the anchor (rod 1 m, cable 0.5 m), the cable's reaction carries it.
+  World world(config());
+  ParticleSpec spec;
+  spec.position = Vec3(0.0, 0.0, -1.0);
+  spec.inverse_mass = 10.0;
+  const ParticleId knot = *world.addParticle(spec);
+  ASSERT_TRUE(world.addLink(Rod::anchoredAt(knot, Vec3::Zero(), 1.0)));
+  const BodyId box_id =
+      *world.addBody(body(box(Vec3::Constant(0.1)), 2.0, Vec3(0.0, 0.0, -1.6)));
+  ASSERT_TRUE(world.addJoint(DistanceJoint::cable(JointEnd::atParticle(knot),
+                                                  JointEnd::onBody(box_id, Vec3(0.0, 0.0, 0.1)),
+                                                  0.5)));
+  for (int step = 0; step < 300; ++step) world.step();
+  const std::size_t i = *world.bodies().find(box_id);
+  EXPECT_NEAR(world.bodies().position(i).z(), -1.6, 5e-3);
+  ASSERT_EQ(world.jointReactions().size(), 1u);
+  // The cable pulls the box up with its weight: the force on end b (the box) is +m g.
+  EXPECT_NEAR(world.jointReactions()[0].force.z(), 2.0 * kG, 0.02 * 2.0 * kG);
+}
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim
