@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
 #include "engine/bodies/body_workspace.h"
 #include "engine/collision/geometry.h"
@@ -241,7 +243,34 @@ Status World::setParticleMaterial(const ParticleId id, const Material& material)
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& direction,
                                      const Real max_distance) const {
-  return raycastScene(particles_, colliders_, origin, direction, max_distance);
+  std::optional<RayHit> nearest =
+      raycastScene(particles_, colliders_, origin, direction, max_distance);
+  const Real length = direction.norm();
+  if (bodies_.empty() || !(length > 0.0) || !std::isfinite(length) || !origin.allFinite()) {
+    return nearest;
+  }
+  const Vec3 d = direction / length;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    for (const ShapeIndex s : bodies_.shapesOf(i)) {
+      const BodyShape& shape = bodies_.shapes()[s];
+      const Real reach = nearest ? nearest->distance : max_distance;
+      const std::optional<RayShapeHit> hit = std::visit(
+          [&](const auto& g) {
+            return BodyShapeKind<std::decay_t<decltype(g)>>::raycast(g, Frame(bodies_.shapePose(s)),
+                                                                     origin, d, reach);
+          },
+          shape.geometry);
+      if (!hit || (nearest && hit->t >= nearest->distance)) continue;
+      RayHit h;
+      h.hit_body = true;
+      h.body = bodies_.idAt(i);
+      h.distance = hit->t;
+      h.point = origin + hit->t * d;
+      h.normal = hit->normal;
+      nearest = h;
+    }
+  }
+  return nearest;
 }
 
 std::vector<ParticleId> World::overlapSphere(const Vec3& center, const Real radius) const {

@@ -8,6 +8,7 @@
 #include "engine/bodies/body_workspace.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
+#include "engine/collision/narrowphase/any_shape.h"
 #include "mass_aggregate_sim/engine/bodies/mass_properties.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 
@@ -54,11 +55,10 @@ Status World::removeBody(const BodyId id) {
     for (const auto& joint : kind) {
       if (joint.a.body == id || joint.b.body == id) wakeJointEnds(joint.a, joint.b);
     }
-    kind.erase(std::remove_if(kind.begin(), kind.end(),
-                              [&](const auto& joint) {
-                                return joint.a.body == id || joint.b.body == id;
-                              }),
-               kind.end());
+    kind.erase(
+        std::remove_if(kind.begin(), kind.end(),
+                       [&](const auto& joint) { return joint.a.body == id || joint.b.body == id; }),
+        kind.end());
   });
   // Its contacts go, and whatever rested on it wakes.
   const std::vector<ShapeIndex>& shapes = bodies_.shapesOf(*dense);
@@ -98,8 +98,8 @@ Status World::setBodyPose(const BodyId id, const Transform& pose) {
   }
   const auto dense = bodyForRequest(id);
   if (!dense) return dense.status();
-  const Transform mass_pose = Transform{pose.position, pose.rotation.normalized()} *
-                              bodies_.massFrame(*dense);
+  const Transform mass_pose =
+      Transform{pose.position, pose.rotation.normalized()} * bodies_.massFrame(*dense);
   bodies_.position(*dense) = mass_pose.position;
   bodies_.orientation(*dense) = mass_pose.rotation.normalized();
   bodies_.refreshWorldInertia(*dense);
@@ -208,6 +208,45 @@ std::vector<BodyContactReport> World::bodyContacts() const {
   return out;
 }
 
+namespace {
+
+// The bodies with a shape within reach of the probe shape placed at frame.
+template <typename Probe>
+std::vector<BodyId> bodiesOverlapping(const BodyStore& bodies, const Probe& probe,
+                                      const Frame& frame) {
+  std::vector<BodyId> found;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (const ShapeIndex s : bodies.shapesOf(i)) {
+      const Manifold m = collideAnyWith(bodies.shapes()[s].geometry, Frame(bodies.shapePose(s)),
+                                        probe, frame, 0.0);
+      bool touches = false;
+      for (int k = 0; k < m.count; ++k) touches = touches || m.points[k].separation <= 0.0;
+      if (touches) {
+        found.push_back(bodies.idAt(i));
+        break;
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+std::vector<BodyId> World::bodiesOverlappingSphere(const Vec3& center, const Real radius) const {
+  if (!center.allFinite() || !std::isfinite(radius) || radius < 0.0) return {};
+  return bodiesOverlapping(bodies_, SphereShape{radius}, Frame(center, Mat3::Identity()));
+}
+
+std::vector<BodyId> World::bodiesOverlappingBox(const Vec3& center, const Vec3& half_extents,
+                                                const Quat& orientation) const {
+  if (!center.allFinite() || !half_extents.allFinite() || (half_extents.array() <= 0.0).any() ||
+      !orientation.coeffs().allFinite() || orientation.norm() < 1e-9) {
+    return {};
+  }
+  return bodiesOverlapping(bodies_, BoxShape{half_extents},
+                           Frame(center, orientation.normalized().toRotationMatrix()));
+}
+
 // --- joints ---
 
 Status World::checkJointEnds(const JointEnd& a, const JointEnd& b, const bool turns) const {
@@ -237,7 +276,8 @@ Status World::checkJointEnds(const JointEnd& a, const JointEnd& b, const bool tu
     return Status::error("a joint's ends are on the same body");
   }
   const auto still = [&](const JointEnd& end) {
-    if (end.isBody()) return bodies_.type(bodies_.denseIndexUnchecked(end.body)) == BodyType::kFixed;
+    if (end.isBody())
+      return bodies_.type(bodies_.denseIndexUnchecked(end.body)) == BodyType::kFixed;
     return !end.isParticle();
   };
   if (still(a) && still(b)) return Status::error("neither end of the joint can move");

@@ -61,8 +61,8 @@ TEST(BodyContact, ACubeRestsOnThePlane) {
 TEST(BodyContact, ACubeDroppedFlatBouncesToTheQuarterHeight) {
   World world(config());
   addGround(world, Material{0.5, 0.5});
-  const BodyId id = *world.addBody(
-      body(box(Vec3::Constant(0.5), Material{0.5, 0.5}), 1.0, Vec3(0.0, 0.0, 1.5)));
+  const BodyId id =
+      *world.addBody(body(box(Vec3::Constant(0.5), Material{0.5, 0.5}), 1.0, Vec3(0.0, 0.0, 1.5)));
   const std::size_t i = *world.bodies().find(id);
   Real rebound = 0.0;
   Real apex = 0.0;
@@ -129,9 +129,7 @@ Vec3 downSlope(const Real degrees) {
 }
 
 // A body resting on the incline at the origin, its centre `height` above the plane.
-Vec3 onIncline(const Real degrees, const Real height) {
-  return height * inclineNormal(degrees);
-}
+Vec3 onIncline(const Real degrees, const Real height) { return height * inclineNormal(degrees); }
 
 TEST(BodyContact, ABoxHoldsOnAGentleIncline) {
   World world(config());
@@ -168,8 +166,7 @@ TEST(BodyContact, ASphereRollsDownAnIncline) {
   World world(config());
   addGround(world, Material{0.0, 0.5}, inclineNormal(30.0));
   const Real r = 0.25;
-  const BodyId id =
-      *world.addBody(body(sphere(r, Material{0.0, 0.5}), 1.0, onIncline(30.0, r)));
+  const BodyId id = *world.addBody(body(sphere(r, Material{0.0, 0.5}), 1.0, onIncline(30.0, r)));
   const std::size_t i = *world.bodies().find(id);
   const Vec3 start = world.bodies().position(i);
   for (int step = 0; step < 60; ++step) world.step();

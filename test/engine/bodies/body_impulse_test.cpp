@@ -98,8 +98,8 @@ TEST(BodyImpulse, RemovingABodyRemovesItsJointsAndWakesWhatRestedOnIt) {
   addGround(world);
   const BodyId lower = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0, 0, 0.5)));
   const BodyId upper = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0, 0, 1.5)));
-  ASSERT_TRUE(world.addJoint(BallJoint{JointEnd::onBody(upper, Vec3(0, 0, 0.5)),
-                                       JointEnd::inWorld(Vec3(0, 0, 2.0))}));
+  ASSERT_TRUE(world.addJoint(
+      BallJoint{JointEnd::onBody(upper, Vec3(0, 0, 0.5)), JointEnd::inWorld(Vec3(0, 0, 2.0))}));
   for (int step = 0; step < 120; ++step) world.step();
   EXPECT_EQ(world.joints().size(), 1u);
   ASSERT_TRUE(world.removeBody(upper));

@@ -2,12 +2,13 @@
 // momentum and energy, the intermediate axis flips (and does not without the gyroscopic term),
 // free fall with spin follows the closed form; the exponential map against the seeds' first-order
 // quaternion update.
+#include "engine/bodies/body_motion.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "body_scenes.h"
-#include "engine/bodies/body_motion.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -76,11 +77,13 @@ FlipRun intermediateAxis(const bool gyroscopic) {
   Real previous = 2.0;
   for (int step = 0; step < 20 * 60; ++step) {
     world.step();
-    const Vec3 w_body = world.bodies().orientation(i).conjugate() * world.bodies().angularVelocity(i);
+    const Vec3 w_body =
+        world.bodies().orientation(i).conjugate() * world.bodies().angularVelocity(i);
     if ((w_body.y() > 0.0) != (previous > 0.0)) ++run.sign_changes;
     previous = w_body.y();
     run.worst_l = std::max(run.worst_l, std::abs(world.angularMomentum().norm() / l0.norm() - 1.0));
-    run.worst_turn_l = std::max(run.worst_turn_l, (world.angularMomentum() - l0).norm() / l0.norm());
+    run.worst_turn_l =
+        std::max(run.worst_turn_l, (world.angularMomentum() - l0).norm() / l0.norm());
     run.worst_e = std::max(run.worst_e, std::abs(world.kineticEnergy() / e0 - 1.0));
   }
   return run;

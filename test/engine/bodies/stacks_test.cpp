@@ -22,7 +22,8 @@ struct Structure {
 void stack(Structure& s, const int n) {
   addGround(s.world);
   for (int k = 0; k < n; ++k) {
-    s.boxes.push_back(*s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k))));
+    s.boxes.push_back(
+        *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k))));
   }
 }
 

@@ -56,8 +56,8 @@ TEST(HingeJoint, ARodSwingsWithThePendulumsPeriod) {
   // d = L / 2, with the amplitude's correction 1 + theta^2 / 16.
   const Real l = 1.0;
   const Real inertia = (l * l + 0.01 * 0.01) / 3.0;
-  const Real exact = 2.0 * M_PI * std::sqrt(inertia / (kG * 0.5 * l)) *
-                     (1.0 + amplitude * amplitude / 16.0);
+  const Real exact =
+      2.0 * M_PI * std::sqrt(inertia / (kG * 0.5 * l)) * (1.0 + amplitude * amplitude / 16.0);
   std::printf("[ pendulum ] period %.5f s (exact %.5f), anchor drift %.2e m, energy gain %.2e J\n",
               period, exact, worst_drift, worst_gain);
   EXPECT_NEAR(period, exact, 0.005 * exact);
@@ -182,7 +182,8 @@ TEST(FixedJoint, HoldsTwoBodiesAsOne) {
   World world(config());
   const BodyId a = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.0, 0.0, 0.0)));
   const BodyId b = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.5, 0.0, 0.0)));
-  ASSERT_TRUE(world.addJoint(FixedJoint{JointEnd::onBody(a), JointEnd::onBody(b, Vec3(-0.5, 0, 0))}));
+  ASSERT_TRUE(
+      world.addJoint(FixedJoint{JointEnd::onBody(a), JointEnd::onBody(b, Vec3(-0.5, 0, 0))}));
   ASSERT_TRUE(world.setBodyVelocity(a, Vec3(0.0, 0.0, 2.0), Vec3(0.0, 3.0, 0.0)));
   for (int step = 0; step < 120; ++step) world.step();
   const Transform pa = world.bodies().pose(*world.bodies().find(a));
@@ -201,11 +202,9 @@ TEST(DistanceJoint, ARopeOfParticlesHoldsABox) {
   spec.inverse_mass = 10.0;
   const ParticleId knot = *world.addParticle(spec);
   ASSERT_TRUE(world.addLink(Rod::anchoredAt(knot, Vec3::Zero(), 1.0)));
-  const BodyId box_id =
-      *world.addBody(body(box(Vec3::Constant(0.1)), 2.0, Vec3(0.0, 0.0, -1.6)));
-  ASSERT_TRUE(world.addJoint(DistanceJoint::cable(JointEnd::atParticle(knot),
-                                                  JointEnd::onBody(box_id, Vec3(0.0, 0.0, 0.1)),
-                                                  0.5)));
+  const BodyId box_id = *world.addBody(body(box(Vec3::Constant(0.1)), 2.0, Vec3(0.0, 0.0, -1.6)));
+  ASSERT_TRUE(world.addJoint(DistanceJoint::cable(
+      JointEnd::atParticle(knot), JointEnd::onBody(box_id, Vec3(0.0, 0.0, 0.1)), 0.5)));
   for (int step = 0; step < 300; ++step) world.step();
   const std::size_t i = *world.bodies().find(box_id);
   EXPECT_NEAR(world.bodies().position(i).z(), -1.6, 5e-3);

@@ -3,6 +3,7 @@
 #include <optional>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/bodies/body_spec.h"
 #include "mass_aggregate_sim/engine/collision/colliders.h"
 #include "mass_aggregate_sim/engine/core/particle_store.h"
 #include "mass_aggregate_sim/engine/core/types.h"
@@ -10,10 +11,13 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
-// The first thing a ray hits: a particle (hit_particle, particle) or a collider (collider).
+// The first thing a ray hits: a particle (hit_particle, particle), a body (hit_body, body) or a
+// collider (collider).
 struct RayHit {
   bool hit_particle = false;
   ParticleId particle;
+  bool hit_body = false;
+  BodyId body;
   ColliderId collider = 0;
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::Zero();  // outward normal of what was hit, at point

@@ -167,10 +167,15 @@ class World {
   const ContactStats& lastContactStats() const { return last_contact_stats_; }
 
   // --- queries ---
+  // The nearest particle, body or collider the ray hits (RayHit says which).
   std::optional<RayHit> raycast(const Vec3& origin, const Vec3& direction, Real max_distance) const;
   // Particles whose sphere overlaps the given sphere / axis-aligned box.
   std::vector<ParticleId> overlapSphere(const Vec3& center, Real radius) const;
   std::vector<ParticleId> overlapBox(const Vec3& center, const Vec3& half_extents) const;
+  // Bodies with a shape that overlaps the given sphere / box (oriented), in dense order.
+  std::vector<BodyId> bodiesOverlappingSphere(const Vec3& center, Real radius) const;
+  std::vector<BodyId> bodiesOverlappingBox(const Vec3& center, const Vec3& half_extents,
+                                           const Quat& orientation = Quat::Identity()) const;
 
   // Removes all particles, generators, links, colliders, bodies and joints; time goes back to
   // zero. Settings stay.
