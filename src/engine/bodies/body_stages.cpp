@@ -144,24 +144,27 @@ void forEachJointRow(StepContext& ctx, F&& f) {
   });
 }
 
+ContactPass contactPass(const StepContext& ctx, const bool use_bias, const bool top_down) {
+  const BodySettings& s = *ctx.body_settings;
+  return ContactPass{ctx.h,         use_bias, s.max_push_speed, s.restitution_threshold,
+                     s.linear_slop, top_down};
+}
+
 void warmStart(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
     JointKind<typename decltype(tag)::type>::warmStart(joint, row, ws.solver);
   });
-  warmStartContacts(ws.constraints, ws.solver);
+  warmStartContacts(ws.constraints, ws.solver, contactPass(ctx, true, false));
 }
 
-void solvePass(StepContext& ctx, const bool use_bias) {
+void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
   BodyWorkspace& ws = *ctx.body_ws;
   const JointPass pass{ws.solver, ctx.h, use_bias};
   forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
     JointKind<typename decltype(tag)::type>::solve(joint, row, pass);
   });
-  solveContacts(
-      ws.constraints, ws.solver,
-      ContactPass{ctx.h, use_bias, ctx.body_settings->max_push_speed,
-                  ctx.body_settings->restitution_threshold, ctx.body_settings->linear_slop});
+  solveContacts(ws.constraints, ws.solver, contactPass(ctx, use_bias, top_down));
 }
 
 }  // namespace
@@ -271,6 +274,22 @@ void generateBodyContacts(StepContext& ctx) {
     ws.constraints.push_back(prepareContact(contact, static_cast<std::uint32_t>(c), sides,
                                             ws.solver, contactSoftness(settings, ctx.h, still)));
   }
+  if (settings.guess_loads) {
+    std::vector<Real>& heights = ws.heights;
+    heights.assign(ws.solver.size(), 0.0);
+    const Vec3 up = -ctx.config.gravity;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const std::int32_t k = ws.solver_of_body[i];
+      if (k != kNoBody) heights[static_cast<std::size_t>(k)] = up.dot(bodies.position(i));
+    }
+    const auto x = ctx.particles.positions();
+    for (std::size_t k = 0; k < ws.particle_of_solver.size(); ++k) {
+      heights[ws.first_particle + k] =
+          up.dot(Vec3(x.col(static_cast<Eigen::Index>(ws.particle_of_solver[k]))));
+    }
+    guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h);
+  }
+  orderBottomUp(ws.constraints, ctx.config.gravity);
   prepareJoints(ctx);
   // The particles' positions now: their solver bodies' moves are measured from here.
   const auto count = static_cast<Eigen::Index>(ws.particle_of_solver.size());
@@ -287,7 +306,7 @@ void solveBodyConstraints(StepContext& ctx) {
   if (!ctx.bodies || !ctx.body_ws->prepared) return;
   loadParticles(ctx);
   warmStart(ctx);
-  for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true);
+  for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
   storeParticles(ctx, true);
 }
 
@@ -307,7 +326,7 @@ void integrateBodyPositions(StepContext& ctx) {
   }
   if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
   loadParticles(ctx);
-  for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false);
+  for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false, i % 2 == 1);
   storeParticles(ctx, false);
 }
 

@@ -42,6 +42,7 @@ struct BodyWorkspace {
   Vec3Array particle_start;     // their positions when the step began
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
   std::vector<ContactConstraint> constraints;
+  std::vector<Real> heights;  // per solver body, along -gravity
   JointRows joints;
   bool prepared = false;  // the step's rows exist (bodies awake, or particles touching them)
 };

@@ -301,6 +301,7 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
   c.inverse_mass_b = b.inverse_mass;
+  c.center_a = sides.center_a;
   for (int k = 0; k < c.count; ++k) {
     const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
@@ -325,32 +326,12 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   return c;
 }
 
-void warmStartContacts(std::vector<ContactConstraint>& constraints,
-                       std::vector<SolverBody>& bodies) {
+void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+                       const ContactPass& pass) {
   for (ContactConstraint& c : constraints) {
     Sides s(c, bodies);
-    for (int k = 0; k < c.count; ++k) {
-      ContactConstraintPoint& cp = c.points[k];
-      // A point with a gap is not touching: what it did last substep (hold a landing back) is
-      // not a load to carry, and warm starting it would push the bodies apart before they meet.
-      if (separationNow(c, cp, s) > 0.0) {
-        cp.normal_impulse = 0.0;
-        cp.tangent_impulse[0] = 0.0;
-        cp.tangent_impulse[1] = 0.0;
-        continue;
-      }
-      pushNormal(c, cp, s, cp.normal_impulse);
-      pushAt(cp, s, cp.tangent_impulse[0] * c.tangent[0] + cp.tangent_impulse[1] * c.tangent[1]);
-    }
-  }
-}
-
-void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
-                   const ContactPass& pass) {
-  const Real inverse_h = 1.0 / pass.h;
-  for (ContactConstraint& c : constraints) {
-    Sides s(c, bodies);
-    if (pass.use_bias && !c.impact && c.restitution > 0.0) {
+    // Impacts first, at the velocities the bodies arrive with (a warm start would change them).
+    if (!c.impact && c.restitution > 0.0) {
       for (int k = 0; k < c.count; ++k) {
         const ContactConstraintPoint& cp = c.points[k];
         const Real vn = normalVelocity(c, cp, s);
@@ -360,6 +341,101 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
         }
       }
     }
+    if (c.impact) continue;
+    for (int k = 0; k < c.count; ++k) {
+      const ContactConstraintPoint& cp = c.points[k];
+      pushNormal(c, cp, s, cp.normal_impulse);
+      pushAt(cp, s, cp.tangent_impulse[0] * c.tangent[0] + cp.tangent_impulse[1] * c.tangent[1]);
+    }
+  }
+}
+
+void guessRestingLoads(std::vector<ContactConstraint>& constraints,
+                       const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
+                       const Vec3& gravity, const Real h) {
+  const Real g = gravity.norm();
+  if (g == 0.0 || constraints.empty()) return;
+  const Vec3 up = -gravity / g;
+  const Real resting_speed = 2.0 * g * h;
+  // Per body: the contacts it rests on (as constraint index, and which side is below).
+  struct Support {
+    std::uint32_t constraint;
+    std::int32_t below;
+  };
+  std::vector<std::vector<Support>> supports(bodies.size());
+  for (std::uint32_t i = 0; i < constraints.size(); ++i) {
+    const ContactConstraint& c = constraints[i];
+    const Real vertical = c.normal.dot(up);
+    if (std::abs(vertical) < std::sqrt(0.5)) continue;
+    // n points from a to b: down when a rests on b.
+    const std::int32_t upper = vertical < 0.0 ? c.a : c.b;
+    const std::int32_t lower = vertical < 0.0 ? c.b : c.a;
+    if (upper == kNoBody) continue;
+    supports[static_cast<std::size_t>(upper)].push_back(Support{i, lower});
+  }
+  std::vector<std::int32_t> order;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!supports[k].empty() && bodies[k].inverse_mass > 0.0) {
+      order.push_back(static_cast<std::int32_t>(k));
+    }
+  }
+  std::stable_sort(order.begin(), order.end(), [&](const std::int32_t x, const std::int32_t y) {
+    return heights[static_cast<std::size_t>(x)] > heights[static_cast<std::size_t>(y)];
+  });
+  std::vector<Real> load(bodies.size(), 0.0);
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (bodies[k].inverse_mass > 0.0) load[k] = g * h / bodies[k].inverse_mass;
+  }
+  const SolverBody still;
+  for (const std::int32_t k : order) {
+    const std::vector<Support>& below = supports[static_cast<std::size_t>(k)];
+    const Real share = load[static_cast<std::size_t>(k)] / static_cast<Real>(below.size());
+    for (const Support& support : below) {
+      ContactConstraint& c = constraints[support.constraint];
+      Real carried = 0.0;
+      bool fresh = true;
+      for (int p = 0; p < c.count; ++p) {
+        carried += c.points[p].normal_impulse;
+        fresh = fresh && c.points[p].normal_impulse == 0.0;
+      }
+      if (fresh && c.count > 0) {
+        const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
+        const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
+        Real closing = 0.0;
+        for (int p = 0; p < c.count; ++p) {
+          const ContactConstraintPoint& cp = c.points[p];
+          closing = std::max(closing,
+                             std::abs(c.normal.dot(b.velocityAt(cp.r_b) - a.velocityAt(cp.r_a))));
+        }
+        if (closing <= resting_speed) {
+          for (int p = 0; p < c.count; ++p) {
+            c.points[p].normal_impulse = share / static_cast<Real>(c.count);
+          }
+          carried = share;
+        }
+      }
+      if (support.below != kNoBody) load[static_cast<std::size_t>(support.below)] += carried;
+    }
+  }
+}
+
+void orderBottomUp(std::vector<ContactConstraint>& constraints, const Vec3& gravity) {
+  const Real g = gravity.norm();
+  if (g == 0.0) return;
+  const Vec3 up = -gravity / g;
+  std::stable_sort(constraints.begin(), constraints.end(),
+                   [&](const ContactConstraint& x, const ContactConstraint& y) {
+                     return x.height(up) < y.height(up);
+                   });
+}
+
+void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+                   const ContactPass& pass) {
+  const Real inverse_h = 1.0 / pass.h;
+  const std::size_t n = constraints.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    ContactConstraint& c = constraints[pass.top_down ? n - 1 - i : i];
+    Sides s(c, bodies);
     if (!c.impact) solveNormals(c, s, pass, inverse_h);
     if (c.friction > 0.0) solveFriction(c, s);
   }

@@ -17,7 +17,9 @@ struct BodySettings {
   // Passes over the joints and contacts per substep (the first warm started), and relaxing passes
   // after the positions move.
   int iterations = 2;
-  int relax_iterations = 2;
+  int relax_iterations = 0;
+  // New resting contacts start from the static load they carry (a guess the passes refine).
+  bool guess_loads = true;
   // Contacts act as springs of this frequency (Hz) and damping ratio on overlap; capped at a
   // quarter of the substep rate. Joints likewise.
   Real contact_hertz = 30.0;
