@@ -107,6 +107,62 @@ void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3
   center = end.point;
 }
 
+// The links of the particles the body solver moves, closed over links (a rope's every particle
+// joins when one of them touches a body), as distance rows beside the joints.
+void coupleParticleLinks(StepContext& ctx, const Softness& softness) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  ws.link_joints.clear();
+  ws.link_rows.clear();
+  if (ctx.links.empty() || ws.particle_of_solver.empty()) return;
+  const ParticleStore& particles = ctx.particles;
+  const auto joined = [&](const ParticleId id) {
+    if (!id.valid()) return false;
+    const std::size_t p = particles.denseIndexUnchecked(id);
+    return p < ws.solver_of_particle.size() && ws.solver_of_particle[p] != kNoBody;
+  };
+  // Grow the set of joined particles until no link reaches a new one.
+  for (bool grew = true; grew;) {
+    grew = false;
+    ctx.links.forEach([&](const auto& kind) {
+      for (const auto& link : kind) {
+        if (link.anchored() || joined(link.a) == joined(link.b)) continue;
+        const ParticleId outside = joined(link.a) ? link.b : link.a;
+        if (particleSolverBody(ctx, particles.denseIndexUnchecked(outside)) != kNoBody) grew = true;
+      }
+    });
+  }
+  std::vector<BodyWorkspace::LinkImpulse> previous;
+  previous.swap(ws.link_impulses);
+  ctx.links.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    for (const auto& link : kind) {
+      if (!joined(link.a) && !joined(link.b)) continue;
+      const LinkLimits limits = LinkKind<Kind>::limits(link);
+      DistanceJoint joint;
+      joint.a = JointEnd::atParticle(link.a);
+      joint.b = link.anchored() ? JointEnd::inWorld(link.anchor) : JointEnd::atParticle(link.b);
+      joint.min_length = limits.pulls_only ? 0.0 : limits.length;
+      joint.max_length = limits.length;
+      joint.id = link.id;
+      const auto it = std::lower_bound(
+          previous.begin(), previous.end(), link.id,
+          [](const BodyWorkspace::LinkImpulse& x, const GeneratorId id) { return x.id < id; });
+      if (it != previous.end() && it->id == link.id) {
+        joint.lower_impulse = it->lower;
+        joint.upper_impulse = it->upper;
+      }
+      JointRow row;
+      jointSide(ctx, joint.a, row.a, row.r_a, row.center_a, row.q_a);
+      jointSide(ctx, joint.b, row.b, row.r_b, row.center_b, row.q_b);
+      if (row.a == kNoBody && row.b == kNoBody) continue;
+      row.softness = softness;
+      row.joint = static_cast<std::uint32_t>(ws.link_joints.size());
+      ws.link_joints.push_back(joint);
+      ws.link_rows.push_back(row);
+    }
+  });
+}
+
 void prepareJoints(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   const BodySettings& s = *ctx.body_settings;
@@ -130,6 +186,7 @@ void prepareJoints(StepContext& ctx) {
       rows.push_back(row);
     }
   });
+  coupleParticleLinks(ctx, softness);
 }
 
 template <typename F>
@@ -142,6 +199,9 @@ void forEachJointRow(StepContext& ctx, F&& f) {
     }
     ++kind;
   });
+  for (const JointRow& row : ctx.body_ws->link_rows) {
+    f(KindTag<DistanceJoint>{}, ctx.body_ws->link_joints[row.joint], row);
+  }
 }
 
 ContactPass contactPass(const StepContext& ctx, const bool use_bias, const bool top_down) {
@@ -335,6 +395,14 @@ void finaliseBodies(StepContext& ctx) {
   BodyStore& bodies = *ctx.bodies;
   BodyWorkspace& ws = *ctx.body_ws;
   if (ws.prepared) storeImpulses(ws.constraints, ws.contacts);
+  ws.link_impulses.clear();
+  for (const DistanceJoint& link : ws.link_joints) {
+    ws.link_impulses.push_back({link.id, link.lower_impulse, link.upper_impulse});
+  }
+  std::sort(ws.link_impulses.begin(), ws.link_impulses.end(),
+            [](const BodyWorkspace::LinkImpulse& x, const BodyWorkspace::LinkImpulse& y) {
+              return x.id < y.id;
+            });
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies.force(i).setZero();
     bodies.torque(i).setZero();
@@ -359,6 +427,15 @@ void finaliseBodies(StepContext& ctx) {
     busy[i] = 1;
     if (!bodies.awake(i)) wakeIsland(bodies, ws, *ctx.joints, i);
   }
+  // Particles never sleep: a body joined to one stays awake with it.
+  ctx.joints->forEach([&](const auto& kind) {
+    for (const auto& joint : kind) {
+      if (!joint.a.isParticle() && !joint.b.isParticle()) continue;
+      for (const JointEnd* end : {&joint.a, &joint.b}) {
+        if (end->isBody()) busy[bodies.denseIndexUnchecked(end->body)] = 1;
+      }
+    }
+  });
   updateSleep(bodies, ws, *ctx.joints, *ctx.body_settings, ctx.dt, busy);
 }
 

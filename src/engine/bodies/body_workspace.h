@@ -11,6 +11,8 @@
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
 #include "engine/collision/dynamic_tree.h"
+#include "mass_aggregate_sim/engine/forces/force_kind.h"
+#include "mass_aggregate_sim/engine/joints/distance_joint.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -42,6 +44,18 @@ struct BodyWorkspace {
   Vec3Array particle_start;     // their positions when the step began
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
   std::vector<ContactConstraint> constraints;
+  // The particle links (cables, rods) of the particles the body solver moves, and of the
+  // particles linked to those: solved with the joints, so that a rope of particles holding a body
+  // carries its load (the particle solver alone cannot see the body). Their impulses, by link id,
+  // warm start the next step (state, with the joints').
+  std::vector<DistanceJoint> link_joints;
+  std::vector<JointRow> link_rows;
+  struct LinkImpulse {
+    GeneratorId id;
+    Real lower;
+    Real upper;
+  };
+  std::vector<LinkImpulse> link_impulses;
   std::vector<Real> heights;  // per solver body, along -gravity
   JointRows joints;
   bool prepared = false;  // the step's rows exist (bodies awake, or particles touching them)

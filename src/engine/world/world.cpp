@@ -434,6 +434,11 @@ std::uint64_t World::stateHash() const {
       using Kind = typename std::decay_t<decltype(kind)>::value_type;
       for (const auto& joint : kind) JointKind<Kind>::addToHash(joint, hasher);
     });
+    for (const BodyWorkspace::LinkImpulse& link : body_ws_->link_impulses) {
+      hasher.add(static_cast<std::uint64_t>(link.id));
+      hasher.add(link.lower);
+      hasher.add(link.upper);
+    }
   }
   return hasher.value();
 }
