@@ -246,7 +246,16 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
   // Warm starts: each new contact's points take the impulses of the old one's with the same
   // feature ids (both lists sorted by key).
   const auto by_key = [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; };
-  std::sort(found.begin(), found.end(), by_key);
+  // Sorted through their keys (a contact is a few hundred bytes: moving keys is cheaper).
+  std::vector<std::pair<ContactKey, std::uint32_t>>& keys = ws.keys;
+  keys.clear();
+  for (std::uint32_t i = 0; i < found.size(); ++i) keys.emplace_back(found[i].key, i);
+  std::sort(keys.begin(), keys.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<BodyContact>& sorted = ws.sorted;
+  sorted.clear();
+  for (const auto& key : keys) sorted.push_back(found[key.second]);
+  found.swap(sorted);
   auto old = ws.contacts.begin();
   for (BodyContact& contact : found) {
     while (old != ws.contacts.end() && old->key < contact.key) ++old;

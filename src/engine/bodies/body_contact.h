@@ -42,6 +42,17 @@ struct BodyContact {
   std::array<ContactPointImpulse, Manifold::kMaxPoints> impulses{};
   Real friction = 0.0;
   Real restitution = 0.0;
+  // The points' coupled mass when last inverted, and its pseudo-inverse: a resting contact's
+  // mass does not change from step to step, and inverting it is most of preparing the contact.
+  // One for both sides moving, one for the upper side alone (the shock pass).
+  struct InvertedMass {
+    Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints> mass =
+        Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>::Zero();
+    Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints> inverse =
+        Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>::Zero();
+  };
+  InvertedMass coupled;
+  InvertedMass upper_alone;
 };
 
 }  // namespace engine

@@ -227,6 +227,33 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
   solveContacts(ws.constraints, ws.solver, contactPass(ctx, use_bias, top_down));
 }
 
+// The shock rows (contact_solver.h), bottom up as the constraints: contacts between two moving
+// bodies, one resting on the other (normal within 45 degrees of gravity's line), that carry a
+// load (warm started or guessed). Two bodies touching in flight, or held together by a joint,
+// carry none and are left to the passes.
+void prepareShockRows(StepContext& ctx) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  ws.shock_rows.clear();
+  const Vec3 up = -ctx.config.gravity;
+  if (!ctx.body_settings->shock_propagation || up.norm() == 0.0) return;
+  const Vec3 up_unit = up.normalized();
+  for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
+    const ContactConstraint& c = ws.constraints[r];
+    if (c.a == kNoBody || c.b == kNoBody) continue;
+    const Real vertical = c.normal.dot(up_unit);
+    if (std::abs(vertical) < std::sqrt(0.5)) continue;
+    Real load = 0.0;
+    for (int k = 0; k < c.count; ++k) load += c.points[k].normal_impulse;
+    if (load <= 0.0) continue;
+    // n points from a to b: b rests on a when n points up.
+    ContactSides upper = ws.constraint_sides[r];
+    (vertical > 0.0 ? upper.a : upper.b) = kNoBody;
+    BodyContact& contact = ws.contacts[c.contact];
+    ws.shock_rows.push_back(ShockRow{
+        r, prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone)});
+  }
+}
+
 }  // namespace
 
 void beginBodyStep(StepContext& ctx) {
@@ -307,9 +334,19 @@ void generateBodyContacts(StepContext& ctx) {
     center = bodies.position(i);
     return ws.solver_of_body[i];
   };
+  // The rows bottom up along gravity (by each contact's first point; ties in key order).
+  std::vector<std::pair<Real, std::uint32_t>>& order = ws.contact_order;
+  order.clear();
+  const Vec3 up = -ctx.config.gravity;
+  for (std::uint32_t c = 0; c < ws.contacts.size(); ++c) {
+    const Manifold& m = ws.contacts[c].manifold;
+    order.emplace_back(m.count > 0 ? up.dot(m.points[0].point) : 0.0, c);
+  }
+  std::sort(order.begin(), order.end());
   ws.constraints.clear();
-  for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
-    const BodyContact& contact = ws.contacts[c];
+  ws.constraint_sides.clear();
+  for (const auto& [height, c] : order) {
+    BodyContact& contact = ws.contacts[c];
     ContactSides sides;
     sides.a = side(contact.key.shape, sides.center_a);
     switch (contact.key.other) {
@@ -332,7 +369,9 @@ void generateBodyContacts(StepContext& ctx) {
     }
     const bool still = sides.a == kNoBody || sides.b == kNoBody;
     ws.constraints.push_back(prepareContact(contact, static_cast<std::uint32_t>(c), sides,
-                                            ws.solver, contactSoftness(settings, ctx.h, still)));
+                                            ws.solver, contactSoftness(settings, ctx.h, still),
+                                            contact.coupled));
+    ws.constraint_sides.push_back(sides);
   }
   if (settings.guess_loads) {
     std::vector<Real>& heights = ws.heights;
@@ -349,7 +388,7 @@ void generateBodyContacts(StepContext& ctx) {
     }
     guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h);
   }
-  orderBottomUp(ws.constraints, ctx.config.gravity);
+  prepareShockRows(ctx);
   prepareJoints(ctx);
   // The particles' positions now: their solver bodies' moves are measured from here.
   const auto count = static_cast<Eigen::Index>(ws.particle_of_solver.size());
@@ -367,6 +406,8 @@ void solveBodyConstraints(StepContext& ctx) {
   loadParticles(ctx);
   warmStart(ctx);
   for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
+  BodyWorkspace& ws = *ctx.body_ws;
+  propagateShock(ws.shock_rows, ws.constraints, ws.solver, contactPass(ctx, true, false));
   storeParticles(ctx, true);
 }
 

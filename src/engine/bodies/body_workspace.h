@@ -3,10 +3,12 @@
 // starts) and the buffers of a step (solver bodies, contact rows, the joints' rows).
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/bodies/body_contact.h"
 #include "engine/bodies/contact_constraint.h"
+#include "engine/bodies/contact_solver.h"
 #include "engine/bodies/joint_rows.h"
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
@@ -31,6 +33,8 @@ struct BodyWorkspace {
   // Sorted by key; their impulses warm start the next step (state, hashed with the world).
   std::vector<BodyContact> contacts;
   std::vector<BodyContact> found;
+  std::vector<BodyContact> sorted;
+  std::vector<std::pair<ContactKey, std::uint32_t>> keys;
   std::vector<Real> travel;  // per body: how far its points may move this step
 
   // This step: one solver body per awake dynamic or kinematic body, then one per particle that
@@ -44,6 +48,9 @@ struct BodyWorkspace {
   Vec3Array particle_start;     // their positions when the step began
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
   std::vector<ContactConstraint> constraints;
+  std::vector<ContactSides> constraint_sides;                 // each constraint's sides as prepared
+  std::vector<ShockRow> shock_rows;                           // bottom up, as the constraints
+  std::vector<std::pair<Real, std::uint32_t>> contact_order;  // (height, contact) of the rows
   // The particle links (cables, rods) of the particles the body solver moves, and of the
   // particles linked to those: solved with the joints, so that a rope of particles holding a body
   // carries its load (the particle solver alone cannot see the body). Their impulses, by link id,

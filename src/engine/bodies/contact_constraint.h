@@ -53,9 +53,6 @@ struct ContactConstraint {
   // pseudo-inverse gives the least-norm share, the symmetric one).
   PointBlock normal_block = PointBlock::Zero();
   std::array<ContactConstraintPoint, Manifold::kMaxPoints> points{};
-  // Where along `up` its first point is (the anchor on side a).
-  Vec3 center_a = Vec3::Zero();
-  Real height(const Vec3& up) const { return up.dot(center_a + points[0].r_a); }
 };
 
 }  // namespace engine

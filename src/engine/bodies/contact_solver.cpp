@@ -88,15 +88,34 @@ SmallBlock coupledMass(const ContactConstraint& c, const int* index, const int c
 // closing speeds that differ by rounding are then not quite in its range: an inverse would answer
 // with huge opposite impulses on alternate corners; the pseudo-inverse gives the least-squares,
 // least-norm share.
-SmallBlock pseudoInverse(const SmallBlock& k) {
-  const Eigen::SelfAdjointEigenSolver<SmallBlock> eigen(k);
+template <int N>
+SmallBlock pseudoInverseOf(const SmallBlock& k) {
+  using Fixed = Eigen::Matrix<Real, N, N>;
+  const Fixed fixed = k;
+  Eigen::SelfAdjointEigenSolver<Fixed> eigen;
+  if constexpr (N <= 3) {
+    eigen.computeDirect(fixed);
+  } else {
+    eigen.compute(fixed);
+  }
   const auto& values = eigen.eigenvalues();
   const Real floor = 1e-6 * values.cwiseAbs().maxCoeff();
-  SmallVector inverted(values.size());
-  for (Eigen::Index i = 0; i < values.size(); ++i) {
-    inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
-  }
+  Eigen::Matrix<Real, N, 1> inverted;
+  for (int i = 0; i < N; ++i) inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
   return eigen.eigenvectors() * inverted.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+SmallBlock pseudoInverse(const SmallBlock& k) {
+  switch (k.rows()) {
+    case 1:
+      return SmallBlock::Constant(1, 1, k(0, 0) > 0.0 ? 1.0 / k(0, 0) : 0.0);
+    case 2:
+      return pseudoInverseOf<2>(k);
+    case 3:
+      return pseudoInverseOf<3>(k);
+    default:
+      return pseudoInverseOf<4>(k);
+  }
 }
 
 // Rows of contact c along its normal, solved at once: the points in index[0..count), each with
@@ -285,7 +304,7 @@ void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1) {
 
 ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t index,
                                  const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                                 const Softness& softness) {
+                                 const Softness& softness, BodyContact::InvertedMass& inverted) {
   ContactConstraint c;
   c.a = sides.a;
   c.b = sides.b;
@@ -301,7 +320,6 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
   c.inverse_mass_b = b.inverse_mass;
-  c.center_a = sides.center_a;
   for (int k = 0; k < c.count; ++k) {
     const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
@@ -321,7 +339,14 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   }
   if (c.count > 1) {
     const int all[Manifold::kMaxPoints] = {0, 1, 2, 3};
-    c.normal_block.topLeftCorner(c.count, c.count) = pseudoInverse(coupledMass(c, all, c.count));
+    const auto mass = coupledMass(c, all, c.count);
+    auto kept_mass = inverted.mass.topLeftCorner(c.count, c.count);
+    if ((mass - kept_mass).cwiseAbs().maxCoeff() > 1e-12 * mass.cwiseAbs().maxCoeff()) {
+      kept_mass = mass;
+      inverted.inverse.topLeftCorner(c.count, c.count) = pseudoInverse(mass);
+    }
+    c.normal_block.topLeftCorner(c.count, c.count) =
+        inverted.inverse.topLeftCorner(c.count, c.count);
   }
   return c;
 }
@@ -419,16 +444,6 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
   }
 }
 
-void orderBottomUp(std::vector<ContactConstraint>& constraints, const Vec3& gravity) {
-  const Real g = gravity.norm();
-  if (g == 0.0) return;
-  const Vec3 up = -gravity / g;
-  std::stable_sort(constraints.begin(), constraints.end(),
-                   [&](const ContactConstraint& x, const ContactConstraint& y) {
-                     return x.height(up) < y.height(up);
-                   });
-}
-
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
                    const ContactPass& pass) {
   const Real inverse_h = 1.0 / pass.h;
@@ -438,6 +453,24 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
     Sides s(c, bodies);
     if (!c.impact) solveNormals(c, s, pass, inverse_h);
     if (c.friction > 0.0) solveFriction(c, s);
+  }
+}
+
+void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstraint>& constraints,
+                    std::vector<SolverBody>& bodies, const ContactPass& pass) {
+  const Real inverse_h = 1.0 / pass.h;
+  for (ShockRow& row : rows) {
+    const ContactConstraint& c = constraints[row.constraint];
+    ContactConstraint& upper = row.upper_alone;
+    upper.impact = c.impact;
+    for (int k = 0; k < c.count; ++k) {
+      upper.points[k].normal_impulse = c.points[k].normal_impulse;
+      upper.points[k].tangent_impulse[0] = c.points[k].tangent_impulse[0];
+      upper.points[k].tangent_impulse[1] = c.points[k].tangent_impulse[1];
+    }
+    Sides s(upper, bodies);
+    if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
+    if (upper.friction > 0.0) solveFriction(upper, s);
   }
 }
 

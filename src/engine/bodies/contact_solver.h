@@ -32,18 +32,21 @@ struct ContactSides {
 // always gives the same basis), t1 = n x t0.
 void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1);
 
+// Reads the contact's manifold and carried impulses; keeps the coupled mass's pseudo-inverse in
+// `inverted` (one of the contact's) so that a resting contact whose mass has not changed is not
+// inverted again.
 ContactConstraint prepareContact(const BodyContact& contact, std::uint32_t index,
                                  const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                                 const Softness& softness);
+                                 const Softness& softness, BodyContact::InvertedMass& inverted);
 struct ContactPass {
   Real h;
   bool use_bias;
   Real max_push_speed;
   Real restitution_threshold;
   Real slop;
-  // The constraints are ordered bottom up (prepareContacts); passes alternate, up then down, so
-  // that one carries what stops a fall from the ground up and the next the loads from the top
-  // down.
+  // The constraints are ordered bottom up along gravity (generateBodyContacts); passes alternate,
+  // up then down, so that one carries what stops a fall from the ground up and the next the loads
+  // from the top down.
   bool top_down;
 };
 // A first guess for the impulses of new resting contacts: the static load each carries. Going
@@ -57,9 +60,6 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
                        const Vec3& gravity, Real h);
 
-// Orders the step's constraints bottom up along gravity (by the height of each contact's first
-// point; ties keep the contacts' key order).
-void orderBottomUp(std::vector<ContactConstraint>& constraints, const Vec3& gravity);
 // Resolves the impacts of the substep (restitution: contact_solver.h's top), then applies every
 // other contact's impulses of the last substep again.
 void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
@@ -69,6 +69,20 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
 // resolved.
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
                    const ContactPass& pass);
+// Shock propagation (Guendelman, Bridson and Fedkiw 2003, here on velocities and split
+// impulses): a contact on which one body rests on another (its normal within 45 degrees of
+// gravity's line) is solved once more after the substep's passes, bottom up, with the lower body
+// held still, so that each body leaves the substep neither closing on nor sunk into what carries
+// it, however far the passes were from converging: a pile of a hundred rows no longer sinks and
+// rocks row by row. These impulses act on the upper body alone and are not accumulated (the next
+// step warm starts from the passes' impulses): they correct what the passes left, which is zero
+// once they converge.
+struct ShockRow {
+  std::uint32_t constraint;       // the row in constraints
+  ContactConstraint upper_alone;  // the same contact with its lower side held still
+};
+void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstraint>& constraints,
+                    std::vector<SolverBody>& bodies, const ContactPass& pass);
 // The impulses back into the contacts, for the next step's warm start.
 void storeImpulses(const std::vector<ContactConstraint>& constraints,
                    std::vector<BodyContact>& contacts);
