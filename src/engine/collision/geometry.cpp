@@ -28,7 +28,7 @@ std::optional<RayShapeHit> rayIntoBall(const Vec3& origin, const Vec3& direction
   const Real discriminant = b * b - c;
   if (discriminant < 0.0) return std::nullopt;
   const Real t = -b - std::sqrt(discriminant);
-  if (t < 0.0 || t > max_t) return std::nullopt;
+  if (!(t >= 0.0 && t <= max_t)) return std::nullopt;
   const Vec3 normal = (offset + t * direction) / radius;
   return RayShapeHit{t, radius > 0.0 ? normal : Vec3(-direction)};
 }

@@ -157,6 +157,7 @@ Manifold collide(const BoxShape& a, const Frame& fa, const BoxShape& b, const Fr
       edge.consider(s, 3 * i + j, axis);
     }
   }
+  if (face_a.index < 0 || face_b.index < 0) return Manifold{};  // a non-finite frame: no axis
   const Real tolerance = kFeatureTolerance * std::min(ha.minCoeff(), hb.minCoeff());
   const bool reference_b = face_b.separation > face_a.separation + tolerance;
   const Real face_separation = reference_b ? face_b.separation : face_a.separation;
