@@ -240,13 +240,46 @@ class BodyServicesTest(unittest.TestCase):
         self.assertVec(s.twist.angular, (0.0, 0.0, 1.0), tol=1e-12)
 
     def test_reset_brings_bodies_back_still(self):
+        """A reset zeroes velocities as well as poses (gazebo's reset_world left them)."""
+        start = self.state('drifter')
         self.spawn(body('thrown', v=(5.0, 0.0, 0.0), w=(0.0, 1.0, 0.0)))
+        moved = self.sim.set_body_state(SetBodyStateRequest(
+            name='drifter', set_pose=True, pose=body(x=(-12.0, 1.0, 0.0)).pose, set_twist=True,
+            twist=body(v=(1.0, 2.0, 3.0), w=(0.5, 0.0, 0.0)).twist))
+        self.assertTrue(moved.success, moved.message)
+        self.assertTrue(self.sim.apply_body_wrench(wrench(
+            'drifter', force=(1.0, 0.0, 0.0), mode=ApplyBodyWrenchRequest.UNTIL_CLEARED)).success)
+        self.assertTrue(self.sim.step(10).success)
         self.assertTrue(self.sim.reset().success)
-        ids = [b.name for b in self.sim.fresh('bodies').bodies]
-        self.assertEqual(ids, ['anvil'])
-        anvil = self.state('anvil')
-        self.assertVec(anvil.twist.linear, (0.0, 0.0, 0.0), tol=0.0)
-        self.assertVec(anvil.twist.angular, (0.0, 0.0, 0.0), tol=0.0)
+        names = sorted(b.name for b in self.sim.fresh('bodies').bodies)
+        self.assertEqual(names, ['anvil', 'drifter'])
+        drifter = self.state('drifter')
+        self.assertEqual(drifter.pose, start.pose)
+        self.assertVec(drifter.twist.linear, (0.0, 0.0, 0.0), tol=0.0)
+        self.assertVec(drifter.twist.angular, (0.0, 0.0, 0.0), tol=0.0)
+        self.assertEqual(self.sim.stats().sustained_forces, 0)
+
+    def test_spawn_at_the_limits(self):
+        """Every bound reached exactly is accepted, up to ~max_bodies (20) bodies; one more is
+        refused."""
+        q = (0.0, 0.0, 0.0, 1.0 + 0.9e-6)  # |q| within 1e-6 of 1
+        specs = [
+            body('far', x=(1e6, -1e6, 1e6), q=q, mass=1e9,
+                 shapes=[shape('box', (1e3, 1e3, 1e3))]),
+            body('light', x=(-1e6, 1e6, -1e6), mass=1e-6, shapes=[shape('sphere', radius=1e-4)]),
+            body('fast', x=(100.0, 0.0, 0.0), v=(1e5, -1e5, 1e5), w=(1e4, 0.0, 0.0),
+                 shapes=[shape('sphere', radius=0.1)]),
+            body('compound', x=(200.0, 0.0, 0.0),
+                 shapes=[shape('sphere', radius=0.1, at=(1e3, 0.0, 0.0))] +
+                 [shape('capsule', radius=0.1, half_length=0.2)] * 63),
+        ]
+        specs += [body('filler_%d' % i, x=(300.0 + 2.0 * i, 0.0, 0.0)) for i in range(14)]
+        answer = self.sim.spawn_body(specs)
+        self.assertTrue(answer.success, answer.message)
+        self.assertEqual(self.sim.stats().bodies, 20)
+        refused = self.sim.spawn_body([body('one_more', x=(0.0, -50.0, 0.0))])
+        self.assertFalse(refused.success)
+        self.assertIn('~max_bodies', refused.message)
 
     def test_removing_a_body_takes_its_joints(self):
         self.spawn(body('left', x=(0.0, 60.0, 0.0)), body('right', x=(2.0, 60.0, 0.0)))
@@ -259,7 +292,7 @@ class BodyServicesTest(unittest.TestCase):
         self.assertTrue(removed.success, removed.message)
         self.assertEqual(removed.joints_removed, 1)
         stats = self.sim.stats()
-        self.assertEqual((stats.bodies, stats.joints), (2, 0))
+        self.assertEqual((stats.bodies, stats.joints), (3, 0))  # with the anvil and the drifter
         self.assertFalse(self.sim.remove_joint(joint.joint_id).success)
 
     def test_bodies_topic_tf_and_markers(self):
@@ -278,9 +311,9 @@ class BodyServicesTest(unittest.TestCase):
         markers = arrays.fresh()
         arrays.sub.unregister()
         bodies = [m for m in markers.markers if m.ns == 'bodies' and m.action == Marker.ADD]
-        self.assertEqual(len(bodies), 2)  # the anvil and the crate, one cube each
+        self.assertEqual(len(bodies), 3)  # the anvil, the drifter and the crate, one part each
         stats = self.sim.stats()
-        self.assertEqual(stats.bodies, 2)
+        self.assertEqual(stats.bodies, 3)
 
     def test_contacts_carry_the_weight_they_hold(self):
         contacts = Latest('/mass_aggregate_sim/contacts', BodyContactArray)
@@ -299,7 +332,7 @@ class BodyServicesTest(unittest.TestCase):
         self.assertAlmostEqual(abs(c.normal.z), 1.0, delta=1e-6)
         stats = self.sim.stats()
         self.assertGreaterEqual(stats.body_contacts, 1)
-        self.assertEqual(stats.islands, 1)
+        self.assertEqual(stats.islands, 2)  # the load (the anvil is fixed) and the drifter
 
     def test_queries_return_bodies_and_particles(self):
         ray = self.sim.raycast(RaycastRequest(origin=point(10.0, 0.0, 5.0),
@@ -368,6 +401,9 @@ class BodyServicesTest(unittest.TestCase):
             ('unknown frame', body('n', frame_id='nowhere')),
             ('huge name', body(huge)),
             ('over max_bodies', None),
+            ('quaternion just beyond 1e-6', body('n', q=(0.0, 0.0, 0.0, 1.0 + 1.1e-6))),
+            ('size just below 1e-4', body('n', shapes=[shape('sphere', radius=0.99e-4)])),
+            ('mass just above 1e9', body('n', mass=1.01e9)),
         ]
         refused = []
         for what, spec_ in body_cases:
