@@ -15,7 +15,8 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 APT_PACKAGES=(
   build-essential cmake
   ros-core-dev catkin rosbash libroscpp-dev libtf2-ros-dev libgeometry-msgs-dev
-  libvisualization-msgs-dev libstd-srvs-dev libros-rosgraph-msgs-dev librostest-dev python3-rostest
+  libvisualization-msgs-dev libsensor-msgs-dev python3-sensor-msgs libstd-srvs-dev
+  libros-rosgraph-msgs-dev librostest-dev python3-rostest
   python3-rosbag python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-rospy
   python3-tf2-ros
   libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs

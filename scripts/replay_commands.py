@@ -28,8 +28,10 @@ from dynamic_reconfigure.srv import Reconfigure
 from std_srvs.srv import SetBool, Trigger, TriggerRequest
 
 from mass_aggregate_sim.msg import Command, StepAction, StepGoal
-from mass_aggregate_sim.srv import (AddLink, ApplyForce, ApplyImpulse, Remove, RemoveLink,
-                                    SetState, Spawn)
+from mass_aggregate_sim.srv import (AddJoint, AddLink, ApplyBodyImpulse, ApplyBodyWrench,
+                                    ApplyForce, ApplyImpulse, Remove, RemoveBody, RemoveJoint,
+                                    RemoveLink, SetBodyState, SetHingeMotor, SetState, Spawn,
+                                    SpawnBody)
 
 SERVICES = {
     'spawn': Spawn,
@@ -39,6 +41,14 @@ SERVICES = {
     'apply_impulse': ApplyImpulse,
     'add_link': AddLink,
     'remove_link': RemoveLink,
+    'spawn_body': SpawnBody,
+    'remove_body': RemoveBody,
+    'set_body_state': SetBodyState,
+    'apply_body_wrench': ApplyBodyWrench,
+    'apply_body_impulse': ApplyBodyImpulse,
+    'add_joint': AddJoint,
+    'remove_joint': RemoveJoint,
+    'set_hinge_motor': SetHingeMotor,
 }
 CHECKPOINTS = ('pause', 'step')
 WAIT = 60.0  # s of wall time for any one answer

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Under /use_sim_time, paused and running, with or without /clock: a request naming an unknown
-frame is refused at once with a message naming the frame, and the node goes on answering
+frame (particle and body services, joints and queries) is refused at once with a message naming
+the frame, and the node goes on answering
 (rostest: test/frame_lookup_clock.test, test/frame_lookup_no_clock.test). Every wait here is on
 wall time: ROS time may stand still."""
 import sys
@@ -13,9 +14,14 @@ import rostest
 from geometry_msgs.msg import Vector3
 from std_srvs.srv import SetBool
 
-from mass_aggregate_sim.srv import ApplyForce, ApplyForceRequest, SetState, SetStateRequest, Spawn, \
-    Step
-from sim_client import spec
+from mass_aggregate_sim.msg import JointEndSpec
+from mass_aggregate_sim.srv import (AddJoint, AddJointRequest, ApplyBodyImpulse,
+                                    ApplyBodyImpulseRequest, ApplyBodyWrench,
+                                    ApplyBodyWrenchRequest, ApplyForce, ApplyForceRequest,
+                                    GetBodyState, GetBodyStateRequest, Overlap, OverlapRequest,
+                                    Raycast, RaycastRequest, SetBodyState, SetBodyStateRequest,
+                                    SetState, SetStateRequest, Spawn, SpawnBody, Step)
+from sim_client import body, end, spec
 
 NS = '/mass_aggregate_sim'
 # A hung call must fail the test, not the time limit; an answer is expected in milliseconds (the
@@ -40,12 +46,33 @@ class FrameLookupTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('frame_lookup_test')
-        for name in ('spawn', 'set_state', 'apply_force', 'pause', 'step'):
+        for name in ('spawn', 'set_state', 'apply_force', 'pause', 'step', 'spawn_body',
+                     'add_joint', 'overlap'):
             rospy.wait_for_service(NS + '/' + name, timeout=30.0)
         # Persistent: the refusals are timed without the master's lookup of the service.
         cls.spawn = rospy.ServiceProxy(NS + '/spawn', Spawn, persistent=True)
         cls.set_state = rospy.ServiceProxy(NS + '/set_state', SetState, persistent=True)
         cls.apply_force = rospy.ServiceProxy(NS + '/apply_force', ApplyForce, persistent=True)
+        cls.body_services = [
+            (rospy.ServiceProxy(NS + '/' + name, srv, persistent=True), request)
+            for name, srv, request in [
+                ('spawn_body', SpawnBody, [body('b', frame_id='nowhere')]),
+                ('set_body_state', SetBodyState, SetBodyStateRequest(
+                    name='crate', reference_frame='nowhere', set_pose=True,
+                    pose=body().pose)),
+                ('get_body_state', GetBodyState, GetBodyStateRequest(
+                    name='crate', reference_frame='nowhere')),
+                ('apply_body_wrench', ApplyBodyWrench, ApplyBodyWrenchRequest(
+                    name='crate', reference_frame='nowhere')),
+                ('apply_body_impulse', ApplyBodyImpulse, ApplyBodyImpulseRequest(
+                    name='crate', reference_frame='nowhere')),
+                ('add_joint', AddJoint, AddJointRequest(
+                    type='ball', a=end(JointEndSpec.BODY, 'crate'), frame_id='nowhere')),
+                ('raycast', Raycast, RaycastRequest(
+                    frame_id='nowhere', direction=Vector3(1.0, 0.0, 0.0), max_distance=1.0)),
+                ('overlap', Overlap, OverlapRequest(
+                    frame_id='nowhere', shape=OverlapRequest.SPHERE, radius=1.0,
+                    pose=body().pose))]]
         cls.pause = rospy.ServiceProxy(NS + '/pause', SetBool)
         cls.step = rospy.ServiceProxy(NS + '/step', Step)
 
@@ -73,7 +100,7 @@ class FrameLookupTest(unittest.TestCase):
                                   mode=ApplyForceRequest.ONE_STEP)
         state = SetStateRequest(name='ball', frame_id='nowhere', set_position=True)
         return [(self.spawn, [spec('p', (0.0, 0.0, 2.0), frame_id='nowhere')]),
-                (self.set_state, state), (self.apply_force, force)]
+                (self.set_state, state), (self.apply_force, force)] + self.body_services
 
     def check(self, paused):
         answer, _ = call(self.pause, paused)

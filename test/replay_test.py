@@ -2,7 +2,10 @@
 """Records a driven node's ~commands (and nothing else) with rosbag, replays the bag into a second
 node with scripts/replay_commands.py, and expects the same final state hash; a third node with
 another integrator must be named as different (rostest: test/replay.test). The drive includes live
-reconfigures of the integrator and gravity and a ~step action that is cancelled."""
+reconfigures of the integrator and gravity, a ~step action that is cancelled, and bodies: spawns
+(one in a tf frame), joints (a hinge with a motor changed at runtime, a distance joint to a
+particle), wrenches (one for a duration), impulses, teleports and removals."""
+import math
 import os
 import re
 import signal
@@ -17,12 +20,15 @@ import rosbag
 import rospkg
 import rospy
 import rostest
+import tf2_ros
 from dynamic_reconfigure.client import Client
-from geometry_msgs.msg import Vector3
+from geometry_msgs.msg import Point, TransformStamped, Vector3, Wrench
 
-from mass_aggregate_sim.msg import StepAction, StepGoal
-from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
-from sim_client import SimClient, spec
+from mass_aggregate_sim.msg import JointEndSpec, StepAction, StepGoal
+from mass_aggregate_sim.srv import (AddJointRequest, AddLinkRequest, ApplyBodyImpulseRequest,
+                                    ApplyBodyWrenchRequest, ApplyForceRequest,
+                                    SetBodyStateRequest, SetHingeMotorRequest, SetStateRequest)
+from sim_client import SimClient, body, end, shape, spec
 
 TARGET_LIMIT = 2000  # /replay_target's ~max_steps_per_request (test/replay.test)
 
@@ -46,6 +52,20 @@ class ReplayTest(unittest.TestCase):
         cls.dir = tempfile.mkdtemp(prefix='mas_replay_')
         cls.script = os.path.join(rospkg.RosPack().get_path('mass_aggregate_sim'), 'scripts',
                                   'replay_commands.py')
+        # A frame for a spawn given in another frame (recorded already in ~frame_id).
+        cls.tf = tf2_ros.StaticTransformBroadcaster()
+        t = TransformStamped()
+        t.header.stamp = rospy.Time.now()
+        t.header.frame_id = 'world'
+        t.child_frame_id = 'replay_frame'
+        t.transform.translation = vec(-1.0, 0.5, 3.0)
+        t.transform.rotation.x = math.sqrt(0.5)
+        t.transform.rotation.w = math.sqrt(0.5)
+        cls.tf.sendTransform(t)
+        buffer = tf2_ros.Buffer()
+        listener = tf2_ros.TransformListener(buffer)
+        buffer.lookup_transform('world', 'replay_frame', rospy.Time(0), rospy.Duration(10.0))
+        del listener
 
     def record(self, bag):
         recorder = subprocess.Popen(
@@ -87,11 +107,38 @@ class ReplayTest(unittest.TestCase):
         link = sim.add_link(AddLinkRequest(type='spring', a_name='ball', b=spawned.ids[1],
                                            stiffness=40.0, rest_length=-1.0))
         self.assertTrue(link.success, link.message)
+        # Bodies while running: a box on a hinge with a motor, a capsule on a rod to a particle.
+        bodies = sim.spawn_body([
+            body('crate', x=(1.0, 2.0, 4.0), q=(0.0, 0.0, 0.2588190451025208, 0.9659258262890683),
+                 v=(0.5, 0.0, 0.0), shapes=[shape('box', (0.3, 0.2, 0.1))]),
+            body('', x=(0.0, 0.0, 0.0), frame_id='replay_frame',
+                 shapes=[shape('capsule', radius=0.1, half_length=0.3),
+                         shape('sphere', radius=0.15, at=(0.0, 0.0, 0.4))], mass=2.0)])
+        self.assertTrue(bodies.success, bodies.message)
+        hinge = sim.add_joint(AddJointRequest(
+            type='hinge', name='axle', a=end(JointEndSpec.BODY, 'crate'), b=end(),
+            anchor=Point(1.0, 2.0, 4.5), axis=Vector3(0.0, 1.0, 0.0), motor=True,
+            motor_speed=1.5, max_motor_torque=20.0, min_length=-1.0, max_length=-1.0))
+        self.assertTrue(hinge.success, hinge.message)
+        rod = sim.add_joint(AddJointRequest(
+            type='distance', a=end(JointEndSpec.BODY, id=bodies.ids[1]),
+            b=end(JointEndSpec.PARTICLE, 'spring_3'), anchor=Point(-1.0, 0.5, 3.0),
+            min_length=-1.0, max_length=-1.0))
+        self.assertTrue(rod.success, rod.message)
+        self.assertTrue(sim.apply_body_wrench(ApplyBodyWrenchRequest(
+            name='crate', reference_point=Point(1.2, 2.0, 4.0), wrench=Wrench(
+                Vector3(0.0, 0.0, 40.0), Vector3(0.0, 0.0, 1.0)),
+            mode=ApplyBodyWrenchRequest.DURATION, duration=0.35)).success)
         time.sleep(0.3)
         self.assertTrue(sim.pause(True).success)
         self.assertTrue(sim.step(17).success)
         self.assertTrue(sim.set_state(SetStateRequest(name='ball', set_velocity=True,
                                                       velocity=vec(0.0, 0.0, 3.0))).success)
+        self.assertTrue(sim.apply_body_impulse(ApplyBodyImpulseRequest(
+            id=bodies.ids[1], reference_frame='crate', reference_point=Point(0.1, 0.0, 0.0),
+            impulse=vec(0.0, 2.0, 0.0), angular_impulse=vec(0.1, 0.0, 0.0))).success)
+        self.assertTrue(sim.set_hinge_motor(SetHingeMotorRequest(
+            name='axle', enabled=True, speed=-2.0, max_torque=10.0)).success)
         self.assertTrue(sim.step(5).success)
         # Live settings, recorded on ~commands and replayed through ~set_parameters.
         config = self.reconfigure.update_configuration({'integrator': 'rk4', 'gravity_z': -4.5})
@@ -118,11 +165,16 @@ class ReplayTest(unittest.TestCase):
                                                         'substeps': 2})
         self.assertEqual(config['substeps'], 2)
         self.assertTrue(sim.remove([], ['bungee_9']).success)
+        self.assertTrue(sim.set_body_state(SetBodyStateRequest(
+            name='crate', set_pose=True, pose=body(x=(1.0, 2.0, 5.0)).pose, set_twist=True,
+            twist=body(w=(0.0, 1.0, 0.0)).twist)).success)
+        self.assertTrue(sim.remove_joint(rod.joint_id).success)
         self.assertTrue(sim.pause(False).success)
         time.sleep(0.3)
         self.assertTrue(sim.apply_force(0, 'ball', '', vec(5.0, 0.0, 0.0),
                                         ApplyForceRequest.ONE_STEP, 0.0).success)
         self.assertTrue(sim.remove_link(link.link_id).success)
+        self.assertTrue(sim.remove_body([bodies.ids[1]], []).success)
         time.sleep(0.2)
         self.assertTrue(sim.pause(True).success)
         # Let a few stats messages (with every command counted) reach the bag.

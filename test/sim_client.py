@@ -4,28 +4,38 @@ import threading
 import rospy
 from std_srvs.srv import SetBool, Trigger
 
-from mass_aggregate_sim.msg import ParticleArray, ParticleSpec, SimStats
-from mass_aggregate_sim.srv import (AddLink, ApplyForce, ApplyImpulse, Remove, RemoveLink,
-                                    SetState, Spawn, Step)
+from mass_aggregate_sim.msg import (BodyArray, BodyShapeSpec, BodySpec, JointEndSpec,
+                                    ParticleArray, ParticleSpec, SimStats)
+from mass_aggregate_sim.srv import (AddJoint, AddLink, ApplyBodyImpulse, ApplyBodyWrench,
+                                    ApplyForce, ApplyImpulse, GetBodyState, Overlap, Raycast,
+                                    Remove, RemoveBody, RemoveJoint, RemoveLink, SetBodyState,
+                                    SetHingeMotor, SetState, Spawn, SpawnBody, Step)
 
 SERVICES = {
     'spawn': Spawn, 'remove': Remove, 'set_state': SetState, 'apply_force': ApplyForce,
     'apply_impulse': ApplyImpulse, 'add_link': AddLink, 'remove_link': RemoveLink,
     'pause': SetBool, 'step': Step, 'reset': Trigger,
 }
+BODY_SERVICES = {
+    'spawn_body': SpawnBody, 'remove_body': RemoveBody, 'set_body_state': SetBodyState,
+    'get_body_state': GetBodyState, 'apply_body_wrench': ApplyBodyWrench,
+    'apply_body_impulse': ApplyBodyImpulse, 'add_joint': AddJoint, 'remove_joint': RemoveJoint,
+    'set_hinge_motor': SetHingeMotor, 'raycast': Raycast, 'overlap': Overlap,
+}
 
 
 class SimClient:
     def __init__(self, ns='/mass_aggregate_sim'):
         self.ns = ns
-        for name, srv in SERVICES.items():
+        for name, srv in list(SERVICES.items()) + list(BODY_SERVICES.items()):
             rospy.wait_for_service(ns + '/' + name, timeout=20.0)
             setattr(self, name, rospy.ServiceProxy(ns + '/' + name, srv))
         self._cond = threading.Condition()
         self._latest = {}
-        self._count = {'stats': 0, 'particles': 0}
+        self._count = {'stats': 0, 'particles': 0, 'bodies': 0}
         rospy.Subscriber(ns + '/stats', SimStats, self._on, 'stats', queue_size=10)
         rospy.Subscriber(ns + '/particles', ParticleArray, self._on, 'particles', queue_size=10)
+        rospy.Subscriber(ns + '/bodies', BodyArray, self._on, 'bodies', queue_size=10)
 
     def _on(self, msg, topic):
         with self._cond:
@@ -65,3 +75,34 @@ def spec(name='', x=(0.0, 0.0, 0.0), v=(0.0, 0.0, 0.0), mass=1.0, radius=0.0, da
     s.position.x, s.position.y, s.position.z = x
     s.velocity.x, s.velocity.y, s.velocity.z = v
     return s
+
+
+def shape(kind='box', half_extents=(0.5, 0.5, 0.5), radius=0.0, half_length=0.0,
+          at=(0.0, 0.0, 0.0), q=(0.0, 0.0, 0.0, 1.0), density=0.0, friction=0.5, restitution=0.0):
+    s = BodyShapeSpec()
+    s.type = kind
+    s.half_extents.x, s.half_extents.y, s.half_extents.z = half_extents
+    s.radius, s.half_length, s.density, s.friction, s.restitution = radius, half_length, \
+        density, friction, restitution
+    s.pose.position.x, s.pose.position.y, s.pose.position.z = at
+    s.pose.orientation.x, s.pose.orientation.y, s.pose.orientation.z, s.pose.orientation.w = q
+    return s
+
+
+def body(name='', x=(0.0, 0.0, 0.0), q=(0.0, 0.0, 0.0, 1.0), v=(0.0, 0.0, 0.0),
+         w=(0.0, 0.0, 0.0), shapes=None, mass=1.0, kind=BodySpec.DYNAMIC, frame_id=''):
+    """A body spec: by default a 1 kg unit cube."""
+    b = BodySpec()
+    b.name, b.frame_id, b.type, b.mass = name, frame_id, kind, mass
+    b.pose.position.x, b.pose.position.y, b.pose.position.z = x
+    b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z, b.pose.orientation.w = q
+    b.twist.linear.x, b.twist.linear.y, b.twist.linear.z = v
+    b.twist.angular.x, b.twist.angular.y, b.twist.angular.z = w
+    b.shapes = shapes if shapes is not None else [shape()]
+    return b
+
+
+def end(kind=JointEndSpec.WORLD, name='', id=0):
+    e = JointEndSpec()
+    e.kind, e.name, e.id = kind, name, id
+    return e

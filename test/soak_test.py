@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Soak (rostest: test/soak.test): `clients` threads flood the running node for `duration`
 seconds with valid and invalid requests (spawn, remove, set_state, apply_force, apply_impulse,
-add_link, remove_link, step while running, bad values) and check that every valid request
+add_link, remove_link, step while running, the body and joint services and queries, bad values)
+and check that every valid request
 answers success, every invalid one success=false with a message, none is lost (the node's
 commands_applied equals the successes), ~stats keeps its rate, the node's RSS stays bounded,
 and the node is alive at the end. Prints the figures."""
@@ -17,11 +18,14 @@ import rosgraph
 import rosnode
 import rospy
 import rostest
-from geometry_msgs.msg import Vector3
+from geometry_msgs.msg import Point, Vector3, Wrench
 
-from mass_aggregate_sim.msg import SimStats
-from mass_aggregate_sim.srv import AddLinkRequest, ApplyForceRequest, SetStateRequest
-from sim_client import SERVICES, spec
+from mass_aggregate_sim.msg import JointEndSpec, SimStats
+from mass_aggregate_sim.srv import (AddJointRequest, AddLinkRequest, ApplyBodyImpulseRequest,
+                                    ApplyBodyWrenchRequest, ApplyForceRequest,
+                                    GetBodyStateRequest, OverlapRequest, RaycastRequest,
+                                    SetBodyStateRequest, SetStateRequest)
+from sim_client import BODY_SERVICES, SERVICES, body, end, shape, spec
 
 LIVE_PER_CLIENT = 12  # particles a client keeps alive at most (4 x 12 + 10 < max_particles)
 LINKS_PER_CLIENT = 15  # links a client keeps at most (4 x 15 + 9 < max_links)
@@ -30,6 +34,8 @@ LINKS_PER_CLIENT = 15  # links a client keeps at most (4 x 15 + 9 < max_links)
 # with the number of names spawned, about 37 MiB in 60 s of this flood, not with any leak of the
 # node's own. A pool of 64 per client keeps the frames at 256 while the names still change.
 NAME_POOL = 64
+BODIES_PER_CLIENT = 6  # bodies a client keeps alive at most (4 x 6 < max_bodies)
+JOINTS_PER_CLIENT = 3
 
 
 def vec(x, y, z):
@@ -65,7 +71,11 @@ class Client(threading.Thread):
         self.deadline = deadline
         self.random = random.Random(index)
         self.proxies = {name: rospy.ServiceProxy(ns + '/' + name, srv, persistent=True)
-                        for name, srv in SERVICES.items()}
+                        for name, srv in list(SERVICES.items()) + list(BODY_SERVICES.items())}
+        self.bodies = []  # (id, name)
+        self.joints = []
+        self.body_serial = 0
+        self.queries = 0  # successful requests that change nothing and are not recorded
         self.live = []  # (id, name)
         self.removed = []  # stale ids
         self.links = []
@@ -75,7 +85,7 @@ class Client(threading.Thread):
         self.successes = 0
         self.errors = []
 
-    def call(self, service, expect_success, *args, **kwargs):
+    def call(self, service, expect_success, *args, recorded=True, **kwargs):
         try:
             answer = self.proxies[service](*args, **kwargs)
         except (rospy.ServiceException, OSError) as error:
@@ -87,6 +97,8 @@ class Client(threading.Thread):
             self.invalid += 1
         if answer.success:
             self.successes += 1
+            if not recorded:
+                self.queries += 1
         if answer.success != expect_success:
             self.errors.append('%s: expected success=%s, got %s: %s'
                                % (service, expect_success, answer.success, answer.message))
@@ -110,7 +122,90 @@ class Client(threading.Thread):
         if answer is not None and answer.success:
             self.live.append((answer.ids[0], name))
 
+    def spawn_body(self):
+        taken = set(name for _, name in self.bodies)
+        while True:
+            self.body_serial += 1
+            name = 'b%d_%d' % (self.index, self.body_serial % NAME_POOL)
+            if name not in taken:
+                break
+        x = (self.random.uniform(-3, 3), self.random.uniform(-3, 3), self.random.uniform(0.5, 4))
+        kind = self.random.choice([shape('box', (0.2, 0.15, 0.1)), shape('sphere', radius=0.15),
+                                   shape('capsule', radius=0.1, half_length=0.2)])
+        answer = self.call('spawn_body', True, [body(name, x, shapes=[kind],
+                                                     mass=self.random.uniform(0.5, 5.0))])
+        if answer is not None and answer.success:
+            self.bodies.append((answer.ids[0], name))
+
+    def body_step_once(self):
+        """The body and joint services, valid and invalid."""
+        r = self.random.random()
+        nan = float('nan')
+        if not self.bodies or (r < 0.15 and len(self.bodies) < BODIES_PER_CLIENT):
+            self.spawn_body()
+        elif r < 0.22:
+            bid, _ = self.bodies.pop(self.random.randrange(len(self.bodies)))
+            self.joints = [j for j in self.joints if j[1] != bid]
+            self.call('remove_body', True, [bid], [])
+        elif r < 0.30:
+            _, name = self.random.choice(self.bodies)
+            self.call('apply_body_wrench', True, ApplyBodyWrenchRequest(
+                name=name, reference_frame=name, wrench=Wrench(vec(0.0, 0.0, 30.0),
+                                                               vec(0.0, 0.0, 0.5)),
+                mode=ApplyBodyWrenchRequest.ONE_STEP))
+        elif r < 0.38:
+            bid, _ = self.random.choice(self.bodies)
+            self.call('apply_body_impulse', True, ApplyBodyImpulseRequest(
+                id=bid, impulse=vec(0.0, 0.5, 1.0), angular_impulse=vec(0.01, 0.0, 0.0)))
+        elif r < 0.44:
+            _, name = self.random.choice(self.bodies)
+            self.call('set_body_state', True, SetBodyStateRequest(
+                name=name, set_twist=True, twist=body(v=(0.0, 0.0, 1.0)).twist))
+        elif r < 0.50:
+            _, name = self.random.choice(self.bodies)
+            self.call('get_body_state', True, GetBodyStateRequest(name=name), recorded=False)
+        elif r < 0.56 and len(self.joints) < JOINTS_PER_CLIENT:
+            bid, _ = self.random.choice(self.bodies)
+            answer = self.call('add_joint', True, AddJointRequest(
+                type='distance', a=end(JointEndSpec.BODY, id=bid), b=end(),
+                anchor=Point(0.0, 0.0, 5.0), min_length=0.0, max_length=6.0))
+            if answer is not None and answer.success:
+                self.joints.append((answer.joint_id, bid))
+        elif r < 0.62 and self.joints:
+            joint_id, _ = self.joints.pop()
+            self.call('remove_joint', True, joint_id)
+        elif r < 0.66:
+            self.call('raycast', True, RaycastRequest(origin=Point(0.0, 0.0, 10.0),
+                                                      direction=vec(0.0, 0.0, -1.0),
+                                                      max_distance=20.0), recorded=False)
+        elif r < 0.70:
+            self.call('overlap', True, OverlapRequest(shape=OverlapRequest.SPHERE, radius=1.0,
+                                                      pose=body().pose), recorded=False)
+        # Invalid body requests.
+        elif r < 0.76:
+            self.call('spawn_body', False, [body('bad_body', (nan, 0.0, 1.0))])
+        elif r < 0.82:
+            self.call('spawn_body', False, [body('bad_q', q=(0.0, 0.0, 0.0, 0.0))])
+        elif r < 0.86:
+            self.call('spawn_body', False, [body('bad_size', shapes=[shape('sphere',
+                                                                            radius=-1.0)])])
+        elif r < 0.90:
+            bid, _ = self.random.choice(self.bodies)
+            self.call('add_joint', False, AddJointRequest(
+                type='hinge', a=end(JointEndSpec.BODY, id=bid), b=end(JointEndSpec.BODY, id=bid),
+                axis=vec(0.0, 1.0, 0.0)))
+        elif r < 0.94:
+            _, name = self.random.choice(self.bodies)
+            self.call('apply_body_wrench', False, ApplyBodyWrenchRequest(
+                name=name, wrench=Wrench(vec(math.inf, 0.0, 0.0), vec(0.0, 0.0, 0.0))))
+        else:
+            self.call('get_body_state', False, GetBodyStateRequest(name='nobody'),
+                      recorded=False)
+
     def step_once(self):
+        if self.random.random() < 0.35:
+            self.body_step_once()
+            return
         r = self.random.random()
         nan = float('nan')
         if len(self.live) < 2 or (r < 0.15 and len(self.live) < LIVE_PER_CLIENT):
@@ -186,7 +281,7 @@ class SoakTest(unittest.TestCase):
         duration = float(rospy.get_param('~duration', 60.0))
         clients = int(rospy.get_param('~clients', 4))
         publish_rate = float(rospy.get_param('~publish_rate', 20.0))
-        for name in SERVICES:
+        for name in list(SERVICES) + list(BODY_SERVICES):
             rospy.wait_for_service(ns + '/' + name, timeout=30.0)
         pid = node_pid(ns)
 
@@ -238,6 +333,7 @@ class SoakTest(unittest.TestCase):
         valid = sum(w.valid for w in workers)
         invalid = sum(w.invalid for w in workers)
         successes = sum(w.successes for w in workers)
+        queries = sum(w.queries for w in workers)
         errors = [e for w in workers for e in w.errors]
         peak = max(samples)
         rss_first_third = max(samples[:max(1, len(samples) // 3)])
@@ -251,8 +347,9 @@ class SoakTest(unittest.TestCase):
         self.assertEqual(errors, [], '\n'.join(errors[:20]))
         self.assertGreater(valid, 1000)
         self.assertGreater(invalid, 300)
-        # No request lost: one command applied per success, plus the final pause.
-        self.assertEqual(last.commands_applied - start_commands, successes + 1)
+        # No request lost: one command applied per success (queries are not recorded), plus the
+        # final pause.
+        self.assertEqual(last.commands_applied - start_commands, successes - queries + 1)
         self.assertGreaterEqual(stats_rate, 0.8 * publish_rate)
         # Bounded memory: after the first third (buffers grown to their working size) the RSS
         # grows by less than 16 MiB, and it never exceeds 4 times the starting RSS.

@@ -172,12 +172,20 @@ void capacityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
   out.add("max_links", in.max_links);
   out.add("sustained forces", in.sustained_forces);
   out.add("max_sustained_forces", in.max_sustained_forces);
+  out.add("bodies", in.bodies);
+  out.add("max_bodies", in.max_bodies);
+  out.add("joints", in.joints);
+  out.add("max_joints", in.max_joints);
+  out.add("islands", in.islands);
+  out.add("sleeping bodies", in.sleeping_bodies);
   std::string full;
   for (const auto& [name, count, limit] :
        {std::tuple<const char*, std::size_t, std::size_t>{"particles", in.particles,
                                                           in.max_particles},
         {"links and force generators", in.links, in.max_links},
-        {"sustained forces", in.sustained_forces, in.max_sustained_forces}}) {
+        {"sustained forces", in.sustained_forces, in.max_sustained_forces},
+        {"bodies", in.bodies, in.max_bodies},
+        {"joints", in.joints, in.max_joints}}) {
     if (limit > 0 && 10 * count >= 9 * limit) {
       if (!full.empty()) full += "; ";
       full += std::string(name) + " " + std::to_string(count) + " of " + std::to_string(limit);
@@ -187,7 +195,11 @@ void capacityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
     out.summary(DiagnosticStatus::WARN, "at 90 % of the limit or more: " + full);
   } else {
     out.summary(DiagnosticStatus::OK, std::to_string(in.particles) + " particle(s), " +
-                                          std::to_string(in.links) + " link(s)");
+                                          std::to_string(in.links) + " link(s), " +
+                                          std::to_string(in.bodies) + " body(ies) in " +
+                                          std::to_string(in.islands) + " island(s), " +
+                                          std::to_string(in.sleeping_bodies) + " sleeping, " +
+                                          std::to_string(in.joints) + " joint(s)");
   }
 }
 

@@ -33,8 +33,11 @@ std_msgs::ColorRGBA tensionColor(const double tension, const double tension_scal
   return color(1.0f + t, 1.0f + t, 1.0f);
 }
 
-MarkerBuilder::MarkerBuilder(std::string frame_id, const double tension_scale)
-    : frame_id_(std::move(frame_id)), tension_scale_(tension_scale > 0.0 ? tension_scale : 1.0) {}
+MarkerBuilder::MarkerBuilder(std::string frame_id, const double tension_scale,
+                             const bool contact_markers)
+    : frame_id_(std::move(frame_id)),
+      tension_scale_(tension_scale > 0.0 ? tension_scale : 1.0),
+      contact_markers_(contact_markers) {}
 
 void MarkerBuilder::restart() {
   delete_all_ = true;
@@ -58,7 +61,7 @@ Marker MarkerBuilder::makeMarker(const std::string& ns, const int id, const int 
 visualization_msgs::MarkerArray MarkerBuilder::build(const engine::World& world,
                                                      const ros::Time& stamp) {
   WorldSnapshot snapshot;
-  takeSnapshot(world, snapshot);
+  takeSnapshot(world, snapshot, {}, contact_markers_);
   return build(snapshot, world.colliders(), stamp);
 }
 
@@ -78,6 +81,9 @@ visualization_msgs::MarkerArray MarkerBuilder::build(const WorldSnapshot& world,
   addParticles(world, stamp, out);
   addLinks(world, stamp, out);
   addColliders(colliders, stamp, out);
+  addBodies(world.bodies, stamp, out);
+  addJoints(world.bodies, stamp, out);
+  if (contact_markers_) addContacts(world.bodies, stamp, out);
 
   std::set<std::pair<std::string, int>> now;
   for (std::size_t i = first; i < out.markers.size(); ++i) {

@@ -32,6 +32,9 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
            {"max_service_steps", ParamType::kInt},
            {"max_links", ParamType::kInt},
            {"max_sustained_forces", ParamType::kInt},
+           {"max_bodies", ParamType::kInt},
+           {"max_joints", ParamType::kInt},
+           {"contact_markers", ParamType::kBool},
            {"diagnostic_period", ParamType::kNumber},
            {"rate", ParamType::kNumber},
            {"substeps", ParamType::kInt},
@@ -51,6 +54,7 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   nh.param("publish_tf", p.publish_tf, p.publish_tf);
   nh.param("default_radius", p.default_radius, p.default_radius);
   nh.param("tension_scale", p.tension_scale, p.tension_scale);
+  nh.param("contact_markers", p.contact_markers, p.contact_markers);
   int max_particles = static_cast<int>(p.limits.max_particles);
   nh.param("max_particles", max_particles, max_particles);
   int max_steps = static_cast<int>(p.limits.max_steps_per_request);
@@ -61,6 +65,10 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   nh.param("max_links", max_links, max_links);
   int max_sustained = static_cast<int>(p.limits.max_sustained_forces);
   nh.param("max_sustained_forces", max_sustained, max_sustained);
+  int max_bodies = static_cast<int>(p.limits.max_bodies);
+  nh.param("max_bodies", max_bodies, max_bodies);
+  int max_joints = static_cast<int>(p.limits.max_joints);
+  nh.param("max_joints", max_joints, max_joints);
   if (!(p.publish_rate > 0.0 && p.publish_rate <= 1000.0)) {
     return Status::error("~publish_rate: must be in (0, 1000] Hz");
   }
@@ -80,7 +88,9 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
        {std::tuple<const char*, int, int>{"max_particles", max_particles, kMaxParticlesLimit},
         {"max_steps_per_request", max_steps, kMaxStepsPerRequestLimit},
         {"max_links", max_links, kMaxLinksLimit},
-        {"max_sustained_forces", max_sustained, kMaxSustainedForcesLimit}}) {
+        {"max_sustained_forces", max_sustained, kMaxSustainedForcesLimit},
+        {"max_bodies", max_bodies, kMaxBodiesLimit},
+        {"max_joints", max_joints, kMaxJointsLimit}}) {
     if (value < 1 || value > limit) {
       return Status::error("~" + std::string(key) + ": must be in [1, " + std::to_string(limit) +
                            "], got " + std::to_string(value));
@@ -97,6 +107,8 @@ Result<NodeParams> readNodeParams(ros::NodeHandle& nh) {
   p.limits.max_steps_per_request = static_cast<std::uint32_t>(max_steps);
   p.limits.max_links = static_cast<std::size_t>(max_links);
   p.limits.max_sustained_forces = static_cast<std::size_t>(max_sustained);
+  p.limits.max_bodies = static_cast<std::size_t>(max_bodies);
+  p.limits.max_joints = static_cast<std::size_t>(max_joints);
   p.limits.world_frame = p.frame_id;
   return p;
 }
@@ -151,6 +163,8 @@ std::string describeParameters(const NodeParams& p, const LoadedScene& scene) {
        node(number(d.default_radius)));
   item("tension_scale", p.tension_scale != d.tension_scale, number(p.tension_scale),
        node(number(d.tension_scale)));
+  item("contact_markers", p.contact_markers != d.contact_markers, flag(p.contact_markers),
+       node(flag(d.contact_markers)));
   item("diagnostic_period", p.diagnostic_period != d.diagnostic_period, number(p.diagnostic_period),
        node(number(d.diagnostic_period)));
   const SimulationLimits& l = p.limits;
@@ -166,6 +180,10 @@ std::string describeParameters(const NodeParams& p, const LoadedScene& scene) {
        node(std::to_string(dl.max_links)));
   item("max_sustained_forces", l.max_sustained_forces != dl.max_sustained_forces,
        std::to_string(l.max_sustained_forces), node(std::to_string(dl.max_sustained_forces)));
+  item("max_bodies", l.max_bodies != dl.max_bodies, std::to_string(l.max_bodies),
+       node(std::to_string(dl.max_bodies)));
+  item("max_joints", l.max_joints != dl.max_joints, std::to_string(l.max_joints),
+       node(std::to_string(dl.max_joints)));
   return out;
 }
 
@@ -173,6 +191,8 @@ Result<LoadedScene> readScene(ros::NodeHandle& nh, const NodeParams& params) {
   SceneOverrides overrides;
   overrides.max_particles = params.limits.max_particles;
   overrides.max_links = params.limits.max_links;
+  overrides.max_bodies = params.limits.max_bodies;
+  overrides.max_joints = params.limits.max_joints;
   overrides.world_frame = params.frame_id;
   double rate;
   if (nh.getParam("rate", rate)) overrides.rate = rate;

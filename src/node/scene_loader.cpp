@@ -11,6 +11,7 @@
 #include "mass_aggregate_sim/engine/integrators/integrator.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
+#include "mass_aggregate_sim/node/scene_bodies.h"
 #include "mass_aggregate_sim/node/scene_contacts.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
 
@@ -59,7 +60,8 @@ class SceneBuilder {
     }
     checkKeys(scene, key,
               {"name", "description", "rate", "dt", "substeps", "integrator", "gravity",
-               "particles", "lines", "blocks", "links", "forces", "colliders", "collisions"});
+               "particles", "lines", "blocks", "links", "forces", "colliders", "collisions",
+               "body_solver", "bodies", "joints"});
     loaded.name = stringOr(scene, key, "name", "");
     loaded.description = stringOr(scene, key, "description", "");
     world_ = makeWorld(config(scene, key, loaded), key);
@@ -71,6 +73,14 @@ class SceneBuilder {
     if (has(scene, "blocks")) readBlocks(scene["blocks"], key + ".blocks");
     if (has(scene, "links")) readLinks(scene["links"], key + ".links");
     if (has(scene, "forces")) readForces(scene["forces"], key + ".forces");
+    const BodyLimits body_limits{overrides_.max_bodies, overrides_.max_joints,
+                                 overrides_.world_frame};
+    if (has(scene, "body_solver"))
+      readBodySolver(scene["body_solver"], key + ".body_solver", world_);
+    if (has(scene, "bodies")) readBodies(scene["bodies"], key + ".bodies", world_, body_limits);
+    if (has(scene, "joints")) {
+      readJoints(scene["joints"], key + ".joints", world_, body_limits, loaded.joint_names);
+    }
     loaded.world = world_;
     return loaded;
   }

@@ -168,6 +168,24 @@ std::string describeConfiguration(const PhysicsSettings& physics) {
       << "rod_tolerance: " << exact(k.rod_tolerance) << "\n"
       << "velocity_tolerance: " << exact(k.velocity_tolerance) << "\n"
       << "max_contacts: " << k.max_contacts << "\n";
+  const engine::BodySettings& b = physics.bodies;
+  out << "body_substeps: " << b.substeps << "\n"
+      << "body_iterations: " << b.iterations << "\n"
+      << "body_relax_iterations: " << b.relax_iterations << "\n"
+      << "body_contact_hertz: " << exact(b.contact_hertz) << "\n"
+      << "body_contact_damping_ratio: " << exact(b.contact_damping_ratio) << "\n"
+      << "body_joint_hertz: " << exact(b.joint_hertz) << "\n"
+      << "body_joint_damping_ratio: " << exact(b.joint_damping_ratio) << "\n"
+      << "body_max_push_speed: " << exact(b.max_push_speed) << "\n"
+      << "body_speculative_distance: " << exact(b.speculative_distance) << "\n"
+      << "body_linear_slop: " << exact(b.linear_slop) << "\n"
+      << "body_restitution_threshold: " << exact(b.restitution_threshold) << "\n"
+      << "body_sleep: " << boolText(b.sleep) << "\n"
+      << "body_sleep_speed: " << exact(b.sleep_speed) << "\n"
+      << "body_time_to_sleep: " << exact(b.time_to_sleep) << "\n"
+      << "body_continuous: " << boolText(b.continuous) << "\n"
+      << "body_gyroscopic: " << boolText(b.gyroscopic) << "\n"
+      << "body_runaway_speed: " << exact(b.runaway_speed) << "\n";
   return out.str();
 }
 
@@ -187,8 +205,27 @@ std::uint64_t sceneHash(const engine::World& scene) {
   add_counts(scene.generators());
   add_counts(scene.links());
   add_counts(scene.colliders());
-  const std::string configuration =
-      describeConfiguration(PhysicsSettings{scene.config(), scene.collisionSettings()});
+  // Bodies and joints, when there are any.
+  const engine::BodyStore& bodies = scene.bodies();
+  if (!bodies.empty() || !scene.joints().empty()) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      hash.add(static_cast<std::uint8_t>(bodies.type(i)));
+      hash.add(bodies.mass(i));
+      hash.add(bodies.principalInertia(i).x());
+      hash.add(bodies.principalInertia(i).y());
+      hash.add(bodies.principalInertia(i).z());
+      hash.add(static_cast<std::uint64_t>(bodies.shapesOf(i).size()));
+      for (const engine::ShapeIndex s : bodies.shapesOf(i)) {
+        const engine::BodyShape& shape = bodies.shapes()[s];
+        hash.add(static_cast<std::uint64_t>(shape.geometry.index()));
+        hash.add(shape.material.friction);
+        hash.add(shape.material.restitution);
+      }
+    }
+    add_counts(scene.joints());
+  }
+  const std::string configuration = describeConfiguration(
+      PhysicsSettings{scene.config(), scene.collisionSettings(), scene.bodySettings()});
   hash.add(configuration.data(), configuration.size());
   return hash.value();
 }

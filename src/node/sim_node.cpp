@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "mass_aggregate_sim/Command.h"
+#include "mass_aggregate_sim/node/body_conversions.h"
 #include "mass_aggregate_sim/node/conversions.h"
 #include "mass_aggregate_sim/node/reconfigure.h"
 
@@ -40,18 +41,21 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
       parameters_(describeParameters(params, scene)),
       rate_(scene.rate),
       publish_rate_(params.publish_rate),
-      sim_(scene.world, params.limits),
+      sim_(scene.world, params.limits, scene.joint_names),
       paused_(params.paused),
       scene_hash_(sceneHash(scene.world)),
       configuration_(describeConfiguration(sim_.settings())),
       colliders_(scene.world.colliders()),
-      markers_(params.frame_id, params.tension_scale),
+      markers_(params.frame_id, params.tension_scale, params.contact_markers),
       nh_(private_nh),
       tf_listener_(tf_buffer_),
       step_nh_(private_nh),
       step_action_(private_nh, "step", false),
       diagnostics_(ros::NodeHandle(), private_nh) {
   particles_pub_ = nh_.advertise<ParticleArray>("particles", 1);
+  bodies_pub_ = nh_.advertise<BodyArray>("bodies", 1);
+  contacts_pub_ = nh_.advertise<BodyContactArray>("contacts", 1);
+  joint_states_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   stats_pub_ = nh_.advertise<SimStats>("stats", 1);
   commands_pub_ = nh_.advertise<Command>("commands", 100);
@@ -70,6 +74,18 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
   services_.push_back(nh_.advertiseService("apply_impulse", &SimNode::onApplyImpulse, this));
   services_.push_back(nh_.advertiseService("add_link", &SimNode::onAddLink, this));
   services_.push_back(nh_.advertiseService("remove_link", &SimNode::onRemoveLink, this));
+  services_.push_back(nh_.advertiseService("spawn_body", &SimNode::onSpawnBody, this));
+  services_.push_back(nh_.advertiseService("remove_body", &SimNode::onRemoveBody, this));
+  services_.push_back(nh_.advertiseService("set_body_state", &SimNode::onSetBodyState, this));
+  services_.push_back(nh_.advertiseService("get_body_state", &SimNode::onGetBodyState, this));
+  services_.push_back(nh_.advertiseService("apply_body_wrench", &SimNode::onApplyBodyWrench, this));
+  services_.push_back(
+      nh_.advertiseService("apply_body_impulse", &SimNode::onApplyBodyImpulse, this));
+  services_.push_back(nh_.advertiseService("add_joint", &SimNode::onAddJoint, this));
+  services_.push_back(nh_.advertiseService("remove_joint", &SimNode::onRemoveJoint, this));
+  services_.push_back(nh_.advertiseService("set_hinge_motor", &SimNode::onSetHingeMotor, this));
+  services_.push_back(nh_.advertiseService("raycast", &SimNode::onRaycast, this));
+  services_.push_back(nh_.advertiseService("overlap", &SimNode::onOverlap, this));
   services_.push_back(nh_.advertiseService("pause", &SimNode::onPause, this));
   services_.push_back(nh_.advertiseService("reset", &SimNode::onReset, this));
   step_nh_.setCallbackQueue(&step_queue_);
@@ -258,7 +274,10 @@ void SimNode::runSlice(const Clock::time_point until) {
 void SimNode::fillFrame(const Clock::time_point now) {
   const engine::World& world = sim_.world();
   Frame& frame = frames_.back();
-  takeSnapshot(world, frame.world);
+  // Contacts are copied only for someone who shows them.
+  const bool contacts = contacts_pub_.getNumSubscribers() > 0 ||
+                        (params_.contact_markers && markers_pub_.getNumSubscribers() > 0);
+  takeSnapshot(world, frame.world, sim_.jointNames(), contacts);
   frame.stamp = ros::Time::now();
   frame.taken = now;
   frame.scene_generation = scene_generation_;
@@ -293,6 +312,12 @@ void SimNode::fillFrame(const Clock::time_point now) {
   stats.particles = world.particles().size();
   stats.force_generators = world.generators().size();
   stats.sustained_forces = sim_.sustainedForceCount();
+  const BodySnapshot& bodies = frame.world.bodies;
+  stats.bodies = bodies.ids.size();
+  stats.joints = bodies.joint_count;
+  stats.islands = bodies.islands;
+  stats.sleeping_bodies = bodies.sleeping_count;
+  stats.body_contacts = bodies.contact_count;
   stats.contacts = world.lastContactStats().contacts;
   stats.resolver_iterations = static_cast<std::uint64_t>(world.lastContactStats().iterations);
   stats.kinetic_energy = world.kineticEnergy();
@@ -346,6 +371,12 @@ void SimNode::fillFrame(const Clock::time_point now) {
   d.max_links = params_.limits.max_links;
   d.sustained_forces = sim_.sustainedForceCount();
   d.max_sustained_forces = params_.limits.max_sustained_forces;
+  d.bodies = stats.bodies;
+  d.max_bodies = params_.limits.max_bodies;
+  d.joints = stats.joints;
+  d.max_joints = params_.limits.max_joints;
+  d.islands = stats.islands;
+  d.sleeping_bodies = stats.sleeping_bodies;
 
   if (close_window) {
     window_start_ = now;
@@ -367,10 +398,11 @@ void SimNode::run() {
   char startup[512];
   std::snprintf(
       startup, sizeof startup,
-      "scene '%s' from %s: %zu particles, %zu force generators, %.1f Hz%s; scene hash %lu",
+      "scene '%s' from %s: %zu particles, %zu force generators, %zu bodies, %zu joints, %.1f "
+      "Hz%s; scene hash %lu",
       scene_name_.c_str(), scene_source_.c_str(), sim_.world().particles().size(),
-      sim_.world().generators().size(), rate_, paused_ ? ", paused" : "",
-      static_cast<unsigned long>(scene_hash_));
+      sim_.world().generators().size(), sim_.world().bodies().size(), sim_.world().joints().size(),
+      rate_, paused_ ? ", paused" : "", static_cast<unsigned long>(scene_hash_));
   // What an earlier launch or reconfigure left on the master is read as well (a bare rosrun
   // does not clear it): named here, so it is never silent.
   startup_line_ = std::string(startup) + "; " +

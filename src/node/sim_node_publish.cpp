@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "mass_aggregate_sim/node/body_conversions.h"
 #include "mass_aggregate_sim/node/conversions.h"
 #include "mass_aggregate_sim/node/sim_node.h"
 
@@ -13,10 +14,11 @@ namespace node {
 
 void SimNode::publishTf(const Frame& frame) {
   // tf2 drops a second transform with the same stamp (paused under simulated time).
-  if (frame.stamp <= last_tf_stamp_ || frame.world.named == 0) return;
+  const BodySnapshot& bodies = frame.world.bodies;
+  if (frame.stamp <= last_tf_stamp_ || frame.world.named + bodies.named == 0) return;
   last_tf_stamp_ = frame.stamp;
   std::vector<geometry_msgs::TransformStamped> transforms;
-  transforms.reserve(frame.world.named);
+  transforms.reserve(frame.world.named + bodies.named);
   for (std::size_t i = 0; i < frame.world.ids.size(); ++i) {
     if (frame.world.names[i].empty()) continue;
     geometry_msgs::TransformStamped t;
@@ -25,6 +27,21 @@ void SimNode::publishTf(const Frame& frame) {
     t.child_frame_id = frame.world.names[i];
     t.transform.translation = toVector3Msg(frame.world.positions.col(i));
     t.transform.rotation.w = 1.0;
+    transforms.push_back(t);
+  }
+  // A named body's frame: its own frame (the pose ~spawn_body and ~bodies use), not its mass frame.
+  for (std::size_t i = 0; i < bodies.ids.size(); ++i) {
+    if (bodies.names[i].empty()) continue;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = frame.stamp;
+    t.header.frame_id = params_.frame_id;
+    t.child_frame_id = bodies.names[i];
+    const engine::Transform& pose = bodies.poses[i];
+    t.transform.translation = toVector3Msg(pose.position);
+    t.transform.rotation.x = pose.rotation.x();
+    t.transform.rotation.y = pose.rotation.y();
+    t.transform.rotation.z = pose.rotation.z();
+    t.transform.rotation.w = pose.rotation.w();
     transforms.push_back(t);
   }
   tf_broadcaster_.sendTransform(transforms);
@@ -46,8 +63,34 @@ void SimNode::publishFrame(const Frame& frame) {
   if (markers_pub_.getNumSubscribers() > 0) {
     markers_pub_.publish(markers_.build(frame.world, colliders_, frame.stamp));
   }
+  publishBodies(frame);
   if (params_.publish_tf) publishTf(frame);
   stats_pub_.publish(frame.stats);
+}
+
+void SimNode::publishBodies(const Frame& frame) {
+  const BodySnapshot& bodies = frame.world.bodies;
+  if (bodies_pub_.getNumSubscribers() > 0) {
+    BodyArray msg;
+    msg.header.stamp = frame.stamp;
+    msg.header.frame_id = params_.frame_id;
+    fillBodyArray(bodies, frame.world.step, frame.world.time, msg);
+    bodies_pub_.publish(msg);
+  }
+  if (contacts_pub_.getNumSubscribers() > 0) {
+    BodyContactArray msg;
+    msg.header.stamp = frame.stamp;
+    msg.header.frame_id = params_.frame_id;
+    fillContacts(bodies, frame.world.ids, frame.world.names, frame.world.step, frame.world.time,
+                 msg);
+    contacts_pub_.publish(msg);
+  }
+  if (!bodies.hinges.empty() && joint_states_pub_.getNumSubscribers() > 0) {
+    sensor_msgs::JointState msg;
+    msg.header.stamp = frame.stamp;
+    fillJointStates(bodies, msg);
+    joint_states_pub_.publish(msg);
+  }
 }
 
 void SimNode::updateDiagnostics() {

@@ -7,6 +7,7 @@
 #include "mass_aggregate_sim/node/conversions.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/sim_node.h"
+#include "service_helpers.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -16,33 +17,13 @@ using engine::Result;
 using engine::Status;
 using engine::Vec3;
 
-std::string describeTime(const engine::World& world) {
-  std::ostringstream out;
-  out.precision(9);
-  out << "step " << world.stepCount() << ", t = " << world.time() << " s";
-  return out.str();
-}
-
 ParticleRef refOf(const std::uint64_t id, const std::string& name) { return ParticleRef{id, name}; }
 
 std::string nameOf(const ParticleRef& ref) {
   return ref.name.empty() ? "particle " + std::to_string(ref.id) : quoteInput(ref.name);
 }
 
-template <typename Response>
-bool answer(Response& res, const bool success, const std::string& message) {
-  res.success = success;
-  res.message = message;
-  return true;
-}
-
 }  // namespace
-
-template <typename Response>
-bool SimNode::runOnWorldThread(Response& res, std::function<void()> job) {
-  if (!queue_.run(std::move(job))) return answer(res, false, "the node is shutting down");
-  return true;
-}
 
 Result<Eigen::Isometry3d> SimNode::frameToWorld(const std::string& frame) const {
   if (frame.empty() || frame == params_.frame_id) return Eigen::Isometry3d::Identity();
@@ -75,15 +56,6 @@ Result<Eigen::Isometry3d> SimNode::frameToWorld(const std::string& frame) const 
   return pose;
 }
 
-template <typename Request>
-void SimNode::recordCommand(const std::string& service, const Request& request) {
-  const std::uint32_t size = ros::serialization::serializationLength(request);
-  std::vector<std::uint8_t> bytes(size);
-  ros::serialization::OStream stream(bytes.data(), size);
-  ros::serialization::serialize(stream, request);
-  recordBytes(service, std::move(bytes));
-}
-
 void SimNode::recordBytes(const std::string& service, std::vector<std::uint8_t> bytes) {
   Command command;
   command.header.stamp = ros::Time::now();
@@ -98,8 +70,6 @@ void SimNode::recordBytes(const std::string& service, std::vector<std::uint8_t> 
   command.configuration = configuration_;
   commands_pub_.publish(command);
 }
-
-template void SimNode::recordCommand(const std::string&, const Step::Request&);
 
 bool SimNode::onSpawn(Spawn::Request& req, Spawn::Response& res) {
   std::vector<engine::ParticleSpec> specs;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "mass_aggregate_sim/node/input_limits.h"
 
@@ -19,8 +20,13 @@ using engine::Vec3;
 
 }  // namespace
 
-Simulation::Simulation(const engine::World& scene, const SimulationLimits& limits)
-    : scene_(scene), world_(scene), limits_(limits) {}
+Simulation::Simulation(const engine::World& scene, const SimulationLimits& limits,
+                       JointNames joint_names)
+    : scene_(scene),
+      world_(scene),
+      limits_(limits),
+      scene_joint_names_(std::move(joint_names)),
+      joint_names_(scene_joint_names_) {}
 
 Result<ParticleId> Simulation::resolve(const ParticleRef& ref) const {
   return resolveParticle(world_, ref);
@@ -42,7 +48,8 @@ Result<std::vector<ParticleId>> Simulation::spawn(const std::vector<engine::Part
     if (!valid) return Status::error(where + valid.message());
     const std::string& name = specs[i].name;
     if (name.empty()) continue;
-    if (world_.particles().findByName(name) || !names.insert(name).second) {
+    if (world_.particles().findByName(name) || world_.bodies().findByName(name) ||
+        !names.insert(name).second) {
       return Status::error(where + "the name " + quoteInput(name) + " is already taken");
     }
   }
@@ -75,6 +82,8 @@ Result<std::vector<ParticleId>> Simulation::remove(const std::vector<ParticleRef
                                     [id](const SustainedForce& f) { return f.particle == id; }),
                      sustained_.end());
   }
+  // Joints to a removed particle went with it.
+  pruneJointNames(world_, joint_names_);
   return ids;
 }
 
@@ -117,8 +126,9 @@ Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
   }
   const Status valid_force = checkVector(request.force, kMaxForce, "force", "N");
   if (!valid_force) return valid_force;
-  if (request.mode != ForceMode::kOneStep && sustained_.size() >= limits_.max_sustained_forces) {
-    return Status::error("mode: already " + std::to_string(sustained_.size()) +
+  if (request.mode != ForceMode::kOneStep &&
+      sustainedForceCount() >= limits_.max_sustained_forces) {
+    return Status::error("mode: already " + std::to_string(sustainedForceCount()) +
                          " sustained forces, the limit (clear some first)");
   }
   if (request.mode == ForceMode::kOneStep) {
@@ -179,6 +189,7 @@ void Simulation::step() {
   sustained_.erase(std::remove_if(sustained_.begin(), sustained_.end(),
                                   [](const SustainedForce& f) { return f.steps_left == 0; }),
                    sustained_.end());
+  applyWrenches();
   world_.step();
 }
 
@@ -194,11 +205,13 @@ Status Simulation::stepMany(const std::uint32_t n) {
 void Simulation::reset() {
   world_ = scene_;
   sustained_.clear();
+  wrenches_.clear();
+  joint_names_ = scene_joint_names_;
   if (configured_) configure(*configured_);
 }
 
 PhysicsSettings Simulation::settings() const {
-  return PhysicsSettings{world_.config(), world_.collisionSettings()};
+  return PhysicsSettings{world_.config(), world_.collisionSettings(), world_.bodySettings()};
 }
 
 Status Simulation::configure(const PhysicsSettings& settings) {

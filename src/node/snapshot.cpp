@@ -49,7 +49,8 @@ void takeLinks(const engine::World& world, std::vector<LinkSegment>& out) {
 
 }  // namespace
 
-void takeSnapshot(const engine::World& world, WorldSnapshot& out) {
+void takeSnapshot(const engine::World& world, WorldSnapshot& out, const JointNames& joint_names,
+                  const bool contacts) {
   const engine::ParticleStore& particles = world.particles();
   const std::size_t n = particles.size();
   out.step = world.stepCount();
@@ -68,6 +69,7 @@ void takeSnapshot(const engine::World& world, WorldSnapshot& out) {
     if (!out.names[i].empty()) ++out.named;
   }
   takeLinks(world, out.links);
+  takeBodySnapshot(world, joint_names, contacts, out.bodies);
 }
 
 }  // namespace node

@@ -4,7 +4,9 @@
 //   1: an XmlRpc tree built straight from the bytes, its map keys drawn from the scene vocabulary
 //   2: a sequence of service requests (ParticleSpec messages through toParticleSpec, then
 //      Simulation::spawn / remove / setState / applyForce / applyImpulse / addLink / removeLink /
-//      stepMany / reset) with arbitrary fields, on a small fixed scene.
+//      stepMany / reset, and the body requests spawnBodies / removeBodies / setBodyState /
+//      applyBodyWrench / applyBodyImpulse / addJoint / removeJoint / setHingeMotor) with arbitrary
+//      fields, on a small fixed scene with bodies and a joint.
 // and checks the promises of docs/RELIABILITY.md: a scene that loads keeps every bound and limit,
 // a refused request answers a message and changes nothing, an accepted one keeps the limits, and a
 // non-finite state after a step is always reported. A broken promise aborts. Shared by the
@@ -172,6 +174,36 @@ inline const std::vector<const char*>& vocabulary() {
                                                  "p_1",
                                                  "q",
                                                  "world",
+                                                 "bodies",
+                                                 "joints",
+                                                 "body_solver",
+                                                 "shapes",
+                                                 "half_length",
+                                                 "angular_velocity",
+                                                 "linear_damping",
+                                                 "angular_damping",
+                                                 "can_sleep",
+                                                 "offset",
+                                                 "density",
+                                                 "anchor_b",
+                                                 "axis",
+                                                 "limit",
+                                                 "lower",
+                                                 "upper",
+                                                 "motor",
+                                                 "motor_speed",
+                                                 "max_motor_torque",
+                                                 "min_length",
+                                                 "collide_connected",
+                                                 "ball",
+                                                 "hinge",
+                                                 "distance",
+                                                 "dynamic",
+                                                 "kinematic",
+                                                 "iterations",
+                                                 "sleep",
+                                                 "crate",
+                                                 "wheel",
                                                  ""};
   return words;
 }
@@ -210,6 +242,22 @@ inline XmlRpc::XmlRpcValue treeFromBytes(Bytes& in, const int depth) {
 
 constexpr std::size_t kMaxParticles = 128;
 constexpr std::size_t kMaxLinks = 128;
+constexpr std::size_t kMaxBodies = 16;
+constexpr std::size_t kMaxJoints = 16;
+
+// The promises about bodies: within the limits, finite, inside the coordinate box, named by the
+// rules; the joints within their limit.
+inline void checkBodies(const engine::World& world) {
+  const engine::BodyStore& b = world.bodies();
+  if (b.size() > kMaxBodies) fail("more than max_bodies");
+  if (world.joints().size() > kMaxJoints) fail("more than max_joints");
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (!node::checkParticleName(b.name(i), "world")) fail("a body name breaks the rules");
+    if (!(b.mass(i) >= node::kMinMass && b.mass(i) <= node::kMaxMass)) {
+      fail("a body mass out of bounds");
+    }
+  }
+}
 
 inline void checkLoadedScene(const engine::World& world) {
   const engine::ParticleStore& p = world.particles();
@@ -229,12 +277,15 @@ inline void checkLoadedScene(const engine::World& world) {
     if (!node::checkParticleName(p.name(i), "world"))
       fail("a scene particle name breaks the rules");
   }
+  checkBodies(world);
 }
 
 inline void loadAndStep(const XmlRpc::XmlRpcValue& tree) {
   node::SceneOverrides overrides;
   overrides.max_particles = kMaxParticles;
   overrides.max_links = kMaxLinks;
+  overrides.max_bodies = kMaxBodies;
+  overrides.max_joints = kMaxJoints;
   const auto loaded = node::loadScene(tree, overrides);
   if (!loaded) {
     if (loaded.message().empty()) fail("a refused scene without a message");
@@ -244,7 +295,9 @@ inline void loadAndStep(const XmlRpc::XmlRpcValue& tree) {
   node::SimulationLimits limits;
   limits.max_particles = kMaxParticles;
   limits.max_links = kMaxLinks;
-  node::Simulation sim(loaded.value().world, limits);
+  limits.max_bodies = kMaxBodies;
+  limits.max_joints = kMaxJoints;
+  node::Simulation sim(loaded.value().world, limits, loaded.value().joint_names);
   // A few steps, bounded in work: substeps can be up to 1000.
   const int steps = loaded.value().world.config().substeps > 50 ? 1 : 3;
   for (int i = 0; i < steps; ++i) {
@@ -263,14 +316,21 @@ struct Fingerprint {
   std::size_t particles;
   std::size_t links;
   std::size_t sustained;
+  std::size_t bodies;
+  std::size_t joints;
+  std::size_t joint_names;
   explicit Fingerprint(const node::Simulation& s)
       : hash(s.world().stateHash()),
         particles(s.world().particles().size()),
         links(s.world().generators().size() + s.world().links().size()),
-        sustained(s.sustainedForceCount()) {}
+        sustained(s.sustainedForceCount()),
+        bodies(s.world().bodies().size()),
+        joints(s.world().joints().size()),
+        joint_names(s.jointNames().size()) {}
   bool operator==(const Fingerprint& o) const {
     return hash == o.hash && particles == o.particles && links == o.links &&
-           sustained == o.sustained;
+           sustained == o.sustained && bodies == o.bodies && joints == o.joints &&
+           joint_names == o.joint_names;
   }
 };
 
@@ -283,7 +343,48 @@ particles:
   - {name: q, position: [1, 0, 1], fixed: true}
 lines:
   - {name: l, start: [0, 1, 2], end: [1, 1, 2], count: 4, link: {type: spring, stiffness: 50}}
+bodies:
+  - {name: crate, position: [0, 0, 0.5], shapes: [{type: box, half_extents: [0.5, 0.5, 0.5]}]}
+  - {name: wheel, position: [2, 0, 1], shapes: [{type: capsule, radius: 0.1, half_length: 0.3},
+                                              {type: sphere, radius: 0.2, position: [0, 0, 0.4]}]}
+joints:
+  - {type: hinge, name: axle, a: wheel, anchor: [2, 0, 1.5], axis: [0, 1, 0], motor: true,
+     motor_speed: 1, max_motor_torque: 5}
 )";
+
+inline engine::BodySpec bodySpecFrom(Bytes& in) {
+  engine::BodySpec spec;
+  spec.name = in.text(vocabulary());
+  spec.type = static_cast<engine::BodyType>(in.byte() % 3);
+  spec.pose.position = engine::Vec3(in.real(), in.real(), in.real());
+  if (in.byte() & 1u) spec.pose.rotation = engine::Quat(in.real(), in.real(), in.real(), in.real());
+  node::Twist twist;
+  if (in.byte() & 1u) twist.linear = engine::Vec3(in.real(), in.real(), in.real());
+  if (in.byte() & 1u) twist.angular = engine::Vec3(in.real(), in.real(), in.real());
+  spec.mass = in.byte() & 1u ? in.real() : 0.0;
+  spec.linear_damping = in.byte() & 1u ? in.real() : 0.0;
+  const int shapes = in.byte() % 4;
+  for (int k = 0; k < shapes; ++k) {
+    engine::BodyShapeSpec shape;
+    switch (in.byte() % 3) {
+      case 0:
+        shape.geometry = engine::SphereShape{in.real()};
+        break;
+      case 1:
+        shape.geometry = engine::BoxShape{engine::Vec3(in.real(), in.real(), in.real())};
+        break;
+      default:
+        shape.geometry = engine::CapsuleShape{in.real(), in.real()};
+        break;
+    }
+    if (in.byte() & 1u) shape.local.position = engine::Vec3(in.real(), in.real(), in.real());
+    if (in.byte() & 1u) shape.density = in.real();
+    if (in.byte() & 1u) shape.material.friction = in.real();
+    spec.shapes.push_back(shape);
+  }
+  node::setSpecTwist(spec, twist);
+  return spec;
+}
 
 inline void runRequests(Bytes& in) {
   // Loaded once: every input starts from the same scene.
@@ -295,7 +396,9 @@ inline void runRequests(Bytes& in) {
   limits.max_steps_per_request = 20;
   limits.max_links = 16;
   limits.max_sustained_forces = 4;
-  node::Simulation sim(loaded.value().world, limits);
+  limits.max_bodies = 6;
+  limits.max_joints = 4;
+  node::Simulation sim(loaded.value().world, limits, loaded.value().joint_names);
   std::vector<std::uint64_t> handed_out;
   for (const char* name : {"p", "q", "l_0", "l_3"}) {
     handed_out.push_back(sim.resolve({0, name}).value().packed());
@@ -308,12 +411,38 @@ inline void runRequests(Bytes& in) {
     if (how >= 2) r.id = handed_out[in.byte() % handed_out.size()];
     return r;
   };
+  std::vector<std::uint64_t> bodies_handed_out;
+  for (const char* name : {"crate", "wheel"}) {
+    bodies_handed_out.push_back(sim.resolveBody({0, name}).value().packed());
+  }
+  const auto body_ref = [&]() {
+    node::BodyRef r;
+    const std::uint8_t how = in.byte() % 4;
+    if (how == 0) r.name = in.text(vocabulary());
+    if (how == 1) r.id = in.u64();
+    if (how >= 2) r.id = bodies_handed_out[in.byte() % bodies_handed_out.size()];
+    return r;
+  };
+  const auto joint_end = [&]() {
+    node::JointEndRef end;
+    end.kind = static_cast<node::JointEndRef::Kind>(in.byte() % 3);
+    if (end.kind == node::JointEndRef::Kind::kBody) {
+      const node::BodyRef r = body_ref();
+      end.id = r.id;
+      end.name = r.name;
+    } else if (end.kind == node::JointEndRef::Kind::kParticle) {
+      const node::ParticleRef r = ref();
+      end.id = r.id;
+      end.name = r.name;
+    }
+    return end;
+  };
   int budget = 60;  // steps per input, so one input stays fast
   for (int op = 0; op < 64 && !in.empty(); ++op) {
     const Fingerprint before(sim);
     engine::Status status = engine::Status::ok();
     bool may_change = true;
-    switch (in.byte() % 10) {
+    switch (in.byte() % 18) {
       case 0: {
         std::vector<engine::ParticleSpec> specs;
         const int n = 1 + in.byte() % 3;
@@ -421,6 +550,87 @@ inline void runRequests(Bytes& in) {
       case 9:
         sim.reset();
         break;
+      case 10: {
+        std::vector<engine::BodySpec> specs;
+        const int n = 1 + in.byte() % 2;
+        for (int i = 0; i < n; ++i) specs.push_back(bodySpecFrom(in));
+        const auto ids = sim.spawnBodies(specs);
+        status = ids.status();
+        if (ids) {
+          for (const auto id : *ids) bodies_handed_out.push_back(id.packed());
+        }
+        break;
+      }
+      case 11: {
+        std::vector<node::BodyRef> refs;
+        const int n = in.byte() % 3;
+        for (int i = 0; i < n; ++i) refs.push_back(body_ref());
+        status = sim.removeBodies(refs).status();
+        break;
+      }
+      case 12: {
+        const node::BodyRef r = body_ref();
+        std::optional<engine::Transform> pose;
+        std::optional<node::Twist> twist;
+        const std::uint8_t which = in.byte();
+        if (which & 1u) {
+          pose = engine::Transform{engine::Vec3(in.real(), in.real(), in.real()),
+                                   engine::Quat(in.real(), in.real(), in.real(), in.real())};
+        }
+        if (which & 2u) {
+          twist = node::Twist{engine::Vec3(in.real(), in.real(), in.real()),
+                              engine::Vec3(in.real(), in.real(), in.real())};
+        }
+        status = sim.setBodyState(r, pose, twist);
+        break;
+      }
+      case 13: {
+        node::WrenchRequest w;
+        w.body = body_ref();
+        w.force = engine::Vec3(in.real(), in.real(), in.real());
+        w.torque = engine::Vec3(in.real(), in.real(), in.real());
+        w.point = engine::Vec3(in.real(), in.real(), in.real());
+        w.mode = static_cast<node::ForceMode>(in.byte() % 4);
+        w.duration = in.real();
+        status = sim.applyBodyWrench(w).status();
+        break;
+      }
+      case 14: {
+        const node::BodyRef r = body_ref();
+        status = sim.applyBodyImpulse(r, engine::Vec3(in.real(), in.real(), in.real()),
+                                      engine::Vec3(in.real(), in.real(), in.real()),
+                                      engine::Vec3(in.real(), in.real(), in.real()))
+                     .status();
+        break;
+      }
+      case 15: {
+        node::JointRequest j;
+        j.type = in.text(vocabulary());
+        j.name = in.byte() & 1u ? in.text(vocabulary()) : "";
+        j.a = joint_end();
+        j.b = joint_end();
+        j.anchor_a = engine::Vec3(in.real(), in.real(), in.real());
+        j.anchor_b = in.byte() & 1u ? engine::Vec3(in.real(), in.real(), in.real()) : j.anchor_a;
+        if (in.byte() & 1u)
+          j.values.directions["axis"] = engine::Vec3(in.real(), in.real(), in.real());
+        if (in.byte() & 1u) j.values.flags["limit"] = in.byte() & 1u;
+        if (in.byte() & 1u) j.values.flags["motor"] = in.byte() & 1u;
+        for (const char* field :
+             {"lower", "upper", "motor_speed", "max_motor_torque", "min_length", "max_length"}) {
+          if (in.byte() & 1u) j.values.numbers[field] = in.real();
+        }
+        j.every_field = in.byte() % 4 == 0;
+        j.collide_connected = in.byte() & 1u;
+        status = sim.addJoint(j).status();
+        break;
+      }
+      case 16:
+        status = sim.removeJoint(static_cast<engine::JointId>(in.byte() % 8));
+        break;
+      case 17:
+        status = sim.setHingeMotor(static_cast<engine::JointId>(in.byte() % 8), in.byte() & 1u,
+                                   in.real(), in.real());
+        break;
     }
     if (!may_change) continue;
     if (!status) {
@@ -433,6 +643,14 @@ inline void runRequests(Bytes& in) {
       fail("more than max_links");
     }
     if (sim.sustainedForceCount() > limits.max_sustained_forces) fail("more than max_sustained");
+    if (sim.world().bodies().size() > limits.max_bodies) fail("more than max_bodies");
+    if (sim.world().joints().size() > limits.max_joints) fail("more than max_joints");
+    const engine::BodyStore& b = sim.world().bodies();
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (!b.position(i).allFinite() && sim.world().divergenceCount() == 0) {
+        fail("a non-finite body went unreported");
+      }
+    }
   }
 }
 

@@ -165,6 +165,31 @@ TEST(DiagnosticsTest, CapacityWarnsFromNinetyPercent) {
   EXPECT_NE(full.message.find("sustained forces 10 of 10"), std::string::npos);
 }
 
+TEST(DiagnosticsTest, CapacityCountsBodiesJointsIslandsAndSleepers) {
+  DiagnosticInputs in;
+  in.max_particles = in.max_links = in.max_sustained_forces = 1000;
+  in.max_bodies = 100;
+  in.max_joints = 10;
+  in.bodies = 89;
+  in.joints = 8;
+  in.islands = 3;
+  in.sleeping_bodies = 40;
+  const auto ok = run(capacityStatus, in);
+  EXPECT_EQ(ok.level, DiagnosticStatus::OK);
+  EXPECT_NE(ok.message.find("89 body(ies) in 3 island(s), 40 sleeping, 8 joint(s)"),
+            std::string::npos)
+      << ok.message;
+  in.bodies = 90;
+  const auto bodies = run(capacityStatus, in);
+  EXPECT_EQ(bodies.level, DiagnosticStatus::WARN);
+  EXPECT_NE(bodies.message.find("bodies 90 of 100"), std::string::npos) << bodies.message;
+  in.bodies = 0;
+  in.joints = 9;
+  const auto joints = run(capacityStatus, in);
+  EXPECT_EQ(joints.level, DiagnosticStatus::WARN);
+  EXPECT_NE(joints.message.find("joints 9 of 10"), std::string::npos) << joints.message;
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

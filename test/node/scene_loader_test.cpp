@@ -117,8 +117,8 @@ TEST(SceneLoaderTest, StartupLineNamesTheParametersThatChangedSomething) {
   params.frame_id = "world";  // given, but the default
   params.limits.max_steps_per_request = 500;
   params.max_service_steps = 500;  // the default when ~max_steps_per_request is below 1000
-  params.given = {"rate", "substeps", "integrator", "paused", "publish_rate", "frame_id",
-                  "max_steps_per_request"};
+  params.given = {"rate",         "substeps", "integrator",           "paused",
+                  "publish_rate", "frame_id", "max_steps_per_request"};
   EXPECT_EQ(describeParameters(params, loaded.value()),
             "~rate = 1 (scene: 100), ~integrator = rk4 (default: semi_implicit_euler), "
             "~publish_rate = 20 (default: 30), ~paused = true (default: false), "
@@ -293,7 +293,8 @@ TEST(SceneLoaderTest, ShippedScenesLoad) {
     const auto loaded = load(readFile(dir + "/" + file));
     EXPECT_TRUE(loaded.isOk()) << file << ": " << loaded.message();
     if (loaded.isOk()) {
-      EXPECT_GT(loaded.value().world.particles().size(), 0u) << file;
+      const engine::World& world = loaded.value().world;
+      EXPECT_GT(world.particles().size() + world.bodies().size(), 0u) << file;
     }
   }
 }

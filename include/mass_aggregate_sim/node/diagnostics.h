@@ -43,6 +43,12 @@ struct DiagnosticInputs {
   std::size_t max_links = 0;
   std::size_t sustained_forces = 0;
   std::size_t max_sustained_forces = 0;
+  std::size_t bodies = 0;
+  std::size_t max_bodies = 0;
+  std::size_t joints = 0;
+  std::size_t max_joints = 0;
+  std::size_t islands = 0;
+  std::size_t sleeping_bodies = 0;
 };
 
 // The step rate as a frequency status against ~rate, on the wall clock: fed at each diagnostic
@@ -87,8 +93,9 @@ void stepCostStatus(const DiagnosticInputs& in, diagnostic_updater::DiagnosticSt
 void stabilityStatus(const DiagnosticInputs& in, diagnostic_updater::DiagnosticStatusWrapper& out);
 // Contacts: contacts dropped (max_contacts) or a phase that used every allowed pass: WARN; else OK.
 void contactsStatus(const DiagnosticInputs& in, diagnostic_updater::DiagnosticStatusWrapper& out);
-// Capacity: a count at 90 % of its limit or more: WARN (at 100 % such requests are refused);
-// else OK.
+// Capacity: a count (particles, links, sustained forces, bodies, joints) at 90 % of its limit or
+// more: WARN (at 100 % such requests are refused); else OK. Also shows the islands and the
+// sleeping bodies.
 void capacityStatus(const DiagnosticInputs& in, diagnostic_updater::DiagnosticStatusWrapper& out);
 
 }  // namespace node

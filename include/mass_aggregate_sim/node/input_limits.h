@@ -54,6 +54,8 @@ constexpr int kMaxParticlesLimit = 1000000;
 constexpr int kMaxStepsPerRequestLimit = 10000000;
 constexpr int kMaxLinksLimit = 1000000;
 constexpr int kMaxSustainedForcesLimit = 1000000;
+constexpr int kMaxBodiesLimit = 1000000;
+constexpr int kMaxJointsLimit = 1000000;
 
 // The type a node parameter must have. NodeHandle::param() quietly falls back to the default when
 // the value has another type; the node refuses it instead, naming "~<name>" and the type expected.

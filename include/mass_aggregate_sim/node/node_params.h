@@ -19,8 +19,9 @@ struct NodeParams {
   bool paused = false;
   bool publish_clock = false;
   bool publish_tf = true;
-  double default_radius = 0.1;  // m
-  double tension_scale = 10.0;  // N, link colour saturation
+  double default_radius = 0.1;   // m
+  double tension_scale = 10.0;   // N, link colour saturation
+  bool contact_markers = false;  // body contacts as arrows on ~markers
   // The ~step service's limit: it answers when its steps are done, so it is for short runs;
   // longer ones go through the ~step action (up to limits.max_steps_per_request).
   std::uint32_t max_service_steps = 1000;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mass_aggregate_sim/engine/world/world.h"
+#include "mass_aggregate_sim/node/joint_requests.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -18,8 +19,10 @@ struct SceneOverrides {
   std::optional<std::string> integrator;
   std::optional<engine::Vec3> gravity;  // m/s^2
   std::size_t max_particles = 20000;
-  std::size_t max_links = 100000;     // force generators and links together
-  std::string world_frame = "world";  // no particle may be named as it (tf would clash)
+  std::size_t max_links = 100000;  // force generators and links together
+  std::size_t max_bodies = 10000;
+  std::size_t max_joints = 10000;
+  std::string world_frame = "world";  // no particle or body may be named as it (tf would clash)
 };
 
 // A scene's step settings before the node parameters override them: its own value where it
@@ -43,6 +46,7 @@ struct LoadedScene {
   double rate = 60.0;     // Hz
   SceneStepSettings own;  // what ~rate, ~substeps, ~integrator and ~gravity overrode
   engine::World world;
+  JointNames joint_names;  // the joints the scene named
 };
 
 // Builds a world from a scene tree (the value of ~scene on the parameter server; an empty or

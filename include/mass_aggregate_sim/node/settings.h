@@ -31,10 +31,12 @@ struct LiveSettings {
   bool paused = false;
 };
 
-// The world's physics settings in engine form.
+// The world's physics settings in engine form. The body solver's settings come from the scene
+// (`body_solver`) and are not live: configure() keeps them.
 struct PhysicsSettings {
   engine::WorldConfig config;
   engine::CollisionSettings collisions;
+  engine::BodySettings bodies;
 };
 
 LiveSettings liveSettingsOf(const PhysicsSettings& physics, double publish_rate, bool paused);
@@ -52,8 +54,9 @@ std::optional<engine::DivergencePolicy> parseDivergencePolicy(const std::string&
 std::string describeConfiguration(const PhysicsSettings& physics);
 
 // The identity of a loaded scene: its state hash (positions, velocities, time), what the state
-// hash leaves out (masses, radii, damping, colliders, generators and links by kind) and its
-// configuration (describeConfiguration). Two nodes with equal scene hashes step alike.
+// hash leaves out (masses, radii, damping, colliders, generators and links by kind; bodies' types,
+// masses, inertia and shapes and joints by kind, when it has bodies) and its configuration
+// (describeConfiguration). Two nodes with equal scene hashes step alike.
 std::uint64_t sceneHash(const engine::World& scene);
 
 }  // namespace node

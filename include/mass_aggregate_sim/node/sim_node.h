@@ -21,17 +21,29 @@
 #include <string>
 #include <thread>
 
+#include "mass_aggregate_sim/AddJoint.h"
 #include "mass_aggregate_sim/AddLink.h"
+#include "mass_aggregate_sim/ApplyBodyImpulse.h"
+#include "mass_aggregate_sim/ApplyBodyWrench.h"
 #include "mass_aggregate_sim/ApplyForce.h"
 #include "mass_aggregate_sim/ApplyImpulse.h"
+#include "mass_aggregate_sim/GetBodyState.h"
+#include "mass_aggregate_sim/Overlap.h"
+#include "mass_aggregate_sim/Raycast.h"
 #include "mass_aggregate_sim/Remove.h"
+#include "mass_aggregate_sim/RemoveBody.h"
+#include "mass_aggregate_sim/RemoveJoint.h"
 #include "mass_aggregate_sim/RemoveLink.h"
+#include "mass_aggregate_sim/SetBodyState.h"
+#include "mass_aggregate_sim/SetHingeMotor.h"
 #include "mass_aggregate_sim/SetState.h"
 #include "mass_aggregate_sim/SimConfig.h"
 #include "mass_aggregate_sim/SimStats.h"
 #include "mass_aggregate_sim/Spawn.h"
+#include "mass_aggregate_sim/SpawnBody.h"
 #include "mass_aggregate_sim/Step.h"
 #include "mass_aggregate_sim/StepAction.h"
+#include "mass_aggregate_sim/node/body_requests.h"
 #include "mass_aggregate_sim/node/diagnostics.h"
 #include "mass_aggregate_sim/node/markers.h"
 #include "mass_aggregate_sim/node/node_params.h"
@@ -113,6 +125,19 @@ class SimNode {
   bool onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res);
   bool onAddLink(AddLink::Request& req, AddLink::Response& res);
   bool onRemoveLink(RemoveLink::Request& req, RemoveLink::Response& res);
+  // Bodies and joints (sim_node_bodies.cpp, sim_node_joints.cpp, sim_node_queries.cpp): frames
+  // are resolved on the world thread, where bodies' poses are current.
+  bool onSpawnBody(SpawnBody::Request& req, SpawnBody::Response& res);
+  bool onRemoveBody(RemoveBody::Request& req, RemoveBody::Response& res);
+  bool onSetBodyState(SetBodyState::Request& req, SetBodyState::Response& res);
+  bool onGetBodyState(GetBodyState::Request& req, GetBodyState::Response& res);
+  bool onApplyBodyWrench(ApplyBodyWrench::Request& req, ApplyBodyWrench::Response& res);
+  bool onApplyBodyImpulse(ApplyBodyImpulse::Request& req, ApplyBodyImpulse::Response& res);
+  bool onAddJoint(AddJoint::Request& req, AddJoint::Response& res);
+  bool onRemoveJoint(RemoveJoint::Request& req, RemoveJoint::Response& res);
+  bool onSetHingeMotor(SetHingeMotor::Request& req, SetHingeMotor::Response& res);
+  bool onRaycast(Raycast::Request& req, Raycast::Response& res);
+  bool onOverlap(Overlap::Request& req, Overlap::Response& res);
   bool onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool onStep(Step::Request& req, Step::Response& res);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -133,6 +158,9 @@ class SimNode {
   // The transform from `frame` to ~frame_id (identity for an empty frame or ~frame_id itself),
   // from what tf has now: never waits, so an unknown frame is refused at once whatever the clock.
   engine::Result<Eigen::Isometry3d> frameToWorld(const std::string& frame) const;
+  // World thread: a body's name is that body's frame as it is and moves now; any other name goes
+  // to frameToWorld (taken as still); empty or ~frame_id is the world.
+  engine::Result<ReferenceFrame> referenceFrame(const std::string& frame) const;
   // Publishes an accepted request on ~commands, stamped with the step it was applied at, the
   // state hash and the configuration at that boundary (before the request).
   template <typename Request>
@@ -155,6 +183,8 @@ class SimNode {
   void publishLoop();
   void publishFrame(const Frame& frame);
   void publishTf(const Frame& frame);
+  // ~bodies, ~contacts and ~joint_states.
+  void publishBodies(const Frame& frame);
   void updateDiagnostics();
   // One static frame per collider, <frame_id>/collider_<id>, published once.
   void publishColliderFrames();
@@ -178,6 +208,9 @@ class SimNode {
 
   ros::NodeHandle nh_;
   ros::Publisher particles_pub_;
+  ros::Publisher bodies_pub_;
+  ros::Publisher contacts_pub_;
+  ros::Publisher joint_states_pub_;
   ros::Publisher markers_pub_;
   ros::Publisher stats_pub_;
   ros::Publisher commands_pub_;
@@ -250,6 +283,24 @@ class SimNode {
   double window_step_cost_mean_ = 0.0;
   double window_step_cost_peak_ = 0.0;
 };
+
+template <typename Response>
+bool SimNode::runOnWorldThread(Response& res, std::function<void()> job) {
+  if (!queue_.run(std::move(job))) {
+    res.success = false;
+    res.message = "the node is shutting down";
+  }
+  return true;
+}
+
+template <typename Request>
+void SimNode::recordCommand(const std::string& service, const Request& request) {
+  const std::uint32_t size = ros::serialization::serializationLength(request);
+  std::vector<std::uint8_t> bytes(size);
+  ros::serialization::OStream stream(bytes.data(), size);
+  ros::serialization::serialize(stream, request);
+  recordBytes(service, std::move(bytes));
+}
 
 }  // namespace node
 }  // namespace mass_aggregate_sim

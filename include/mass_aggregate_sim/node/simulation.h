@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
+#include "mass_aggregate_sim/node/body_requests.h"
+#include "mass_aggregate_sim/node/joint_requests.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/settings.h"
 
@@ -22,14 +24,33 @@ struct ForceRequest {
   engine::Real duration = 0.0;  // s, for kDuration
 };
 
+// A force at a point and a torque on a body, in the world: the force keeps its direction and acts
+// on the material point that was at `point` when the request was applied.
+struct WrenchRequest {
+  BodyRef body;
+  engine::Vec3 force = engine::Vec3::Zero();   // N
+  engine::Vec3 torque = engine::Vec3::Zero();  // N m
+  engine::Vec3 point = engine::Vec3::Zero();   // m
+  ForceMode mode = ForceMode::kOneStep;
+  engine::Real duration = 0.0;  // s, for kDuration
+};
+
+struct RemovedBodies {
+  std::vector<engine::BodyId> ids;
+  std::size_t joints = 0;  // joints that went with them
+};
+
 struct SimulationLimits {
   std::size_t max_particles = 20000;
   std::uint32_t max_steps_per_request = 100000;
   // Force generators and links together (springs, bungees, cables, rods, drag, buoyancy).
   std::size_t max_links = 100000;
-  // Forces kept across steps (DURATION and UNTIL_CLEARED).
+  // Forces on particles and wrenches on bodies kept across steps (DURATION and UNTIL_CLEARED).
   std::size_t max_sustained_forces = 10000;
-  // The node's world frame: no particle may take its name or a collider frame's (tf would clash).
+  std::size_t max_bodies = 10000;
+  std::size_t max_joints = 10000;
+  // The node's world frame: no particle or body may take its name or a collider frame's (tf would
+  // clash).
   std::string world_frame = "world";
 };
 
@@ -38,7 +59,9 @@ struct SimulationLimits {
 // than one step. Every call is made from the one thread that owns the world.
 class Simulation {
  public:
-  Simulation(const engine::World& scene, const SimulationLimits& limits);
+  // `joint_names` names the scene's joints (the others are joint_<id>).
+  Simulation(const engine::World& scene, const SimulationLimits& limits,
+             JointNames joint_names = {});
 
   const engine::World& world() const { return world_; }
   const SimulationLimits& limits() const { return limits_; }
@@ -69,8 +92,33 @@ class Simulation {
   // snapshot of the world as it is now (and at each reset()) to go back to.
   engine::Status configure(const PhysicsSettings& settings);
 
+  // --- bodies and joints (simulation_bodies.cpp); poses, points and twists in the world, twists
+  // of the body frame's origin (Twist) ---
+  // All or nothing: every spec is checked (checkBodySpec, names unique among bodies and
+  // particles, ~max_bodies) first.
+  engine::Result<std::vector<engine::BodyId>> spawnBodies(
+      const std::vector<engine::BodySpec>& specs);
+  // All or nothing; their joints and wrenches go with them.
+  engine::Result<RemovedBodies> removeBodies(const std::vector<BodyRef>& refs);
+  // The pose first, then the twist at the new pose; either may be left out (the other is kept).
+  engine::Status setBodyState(const BodyRef& ref, const std::optional<engine::Transform>& pose,
+                              const std::optional<Twist>& twist);
+  // Returns the number of steps the wrench will act (0 for until-cleared and clear).
+  engine::Result<std::uint64_t> applyBodyWrench(const WrenchRequest& request);
+  // A linear impulse at a world point and an angular impulse; returns the twist right after.
+  engine::Result<Twist> applyBodyImpulse(const BodyRef& ref, const engine::Vec3& impulse,
+                                         const engine::Vec3& point,
+                                         const engine::Vec3& angular_impulse);
+  engine::Result<engine::JointId> addJoint(const JointRequest& request);
+  engine::Status removeJoint(engine::JointId id);
+  engine::Status setHingeMotor(engine::JointId id, bool enabled, engine::Real speed,
+                               engine::Real max_torque);
+  engine::Result<engine::BodyId> resolveBody(const BodyRef& ref) const;
+  const JointNames& jointNames() const { return joint_names_; }
+
   engine::Result<engine::ParticleId> resolve(const ParticleRef& ref) const;
-  std::size_t sustainedForceCount() const { return sustained_.size(); }
+  // Particle forces and body wrenches kept across steps.
+  std::size_t sustainedForceCount() const { return sustained_.size() + wrenches_.size(); }
 
  private:
   struct SustainedForce {
@@ -79,10 +127,22 @@ class Simulation {
     std::int64_t steps_left;  // < 0: until cleared
   };
 
+  struct SustainedWrench {
+    engine::BodyId body;
+    engine::Vec3 force;
+    engine::Vec3 point;  // in the body's frame
+    engine::Vec3 torque;
+    std::int64_t steps_left;  // < 0: until cleared
+  };
+  void applyWrenches();
+
   engine::World scene_;
   engine::World world_;
   SimulationLimits limits_;
+  JointNames scene_joint_names_;
+  JointNames joint_names_;
   std::vector<SustainedForce> sustained_;
+  std::vector<SustainedWrench> wrenches_;
   std::optional<PhysicsSettings> configured_;
 };
 

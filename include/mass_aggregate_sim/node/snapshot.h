@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
+#include "mass_aggregate_sim/node/body_snapshot.h"
 
 namespace mass_aggregate_sim {
 namespace node {
@@ -36,9 +37,12 @@ struct WorldSnapshot {
   // force their constraint applied in the last substep.
   std::vector<LinkSegment> links;
   std::size_t named = 0;  // particles with a name
+  BodySnapshot bodies;
 };
 
-void takeSnapshot(const engine::World& world, WorldSnapshot& out);
+// Joints named by `joint_names` (else joint_<id>); body contacts copied when `contacts` is true.
+void takeSnapshot(const engine::World& world, WorldSnapshot& out,
+                  const JointNames& joint_names = {}, bool contacts = false);
 
 // Hands frames from one producer thread to one consumer thread without copying under the lock:
 // the producer fills back(), publish() swaps it with the ready slot; the consumer's take() swaps

@@ -1,0 +1,145 @@
+// The shipped body scenes (config/scenes) loaded and run: they stay finite and do what their
+// description says. Prints the cost of a step ([ scene ] lines).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "mass_aggregate_sim/node/scene_loader.h"
+#include "mass_aggregate_sim/node/snapshot.h"
+#include "yaml_to_xmlrpc.h"
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+using engine::Vec3;
+
+engine::World loadShipped(const std::string& name) {
+  const std::string here = __FILE__;
+  const std::string path =
+      here.substr(0, here.rfind("/test/node/")) + "/config/scenes/" + name + ".yaml";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto loaded = loadScene(test::yamlToXmlRpc(text.str()), SceneOverrides{});
+  EXPECT_TRUE(loaded.isOk()) << name << ": " << loaded.message();
+  return loaded.isOk() ? loaded.value().world : engine::World();
+}
+
+const Vec3& centre(const engine::World& world, const std::string& name) {
+  return world.bodies().position(*world.bodies().find(*world.bodies().findByName(name)));
+}
+
+// Steps `seconds` of simulated time, checking that every body stays finite; prints the cost.
+void run(engine::World& world, const std::string& name, const double seconds) {
+  const int steps = static_cast<int>(seconds / world.config().dt + 0.5);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < steps; ++i) world.step();
+  const double cost =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf(
+      "[ scene ] %s: %zu bodies, %zu joints, %zu particles: %.3f ms per step over %d steps\n",
+      name.c_str(), world.bodies().size(), world.joints().size(), world.particles().size(),
+      1e3 * cost / steps, steps);
+  EXPECT_EQ(world.divergenceCount(), 0u) << name;
+  for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+    EXPECT_TRUE(world.bodies().position(i).allFinite()) << name << " body " << i;
+  }
+}
+
+TEST(BodyScenesTest, TheBoxStackStandsAndSleeps) {
+  engine::World world = loadShipped("box_stack");
+  run(world, "box_stack", 4.0);
+  EXPECT_NEAR(centre(world, "box_9").z(), 4.75, 0.02);
+  EXPECT_NEAR(centre(world, "box_9").x(), 0.0, 0.02);
+  WorldSnapshot snapshot;
+  takeSnapshot(world, snapshot);
+  EXPECT_EQ(snapshot.bodies.sleeping_count, 10u);
+  EXPECT_EQ(snapshot.bodies.islands, 1u);
+}
+
+TEST(BodyScenesTest, ThePyramidStands) {
+  engine::World world = loadShipped("pyramid");
+  ASSERT_EQ(world.bodies().size(), 210u);
+  run(world, "pyramid", 5.0);
+  // The top box stays within 2 cm of where it started (9.75 m up, over x = 0).
+  EXPECT_NEAR(centre(world, "row19_0").z(), 9.75, 0.02);
+  EXPECT_NEAR(centre(world, "row19_0").x(), 0.0, 0.02);
+  WorldSnapshot snapshot;
+  takeSnapshot(world, snapshot);
+  std::printf("[ scene ] pyramid after 5 s: %zu of 210 sleeping, %zu island(s), %zu contacts\n",
+              snapshot.bodies.sleeping_count, snapshot.bodies.islands,
+              snapshot.bodies.contact_count);
+}
+
+TEST(BodyScenesTest, PendulumsSwingOnTheirHinges) {
+  for (const char* name : {"pendulum", "double_pendulum"}) {
+    engine::World world = loadShipped(name);
+    run(world, name, 3.0);
+    WorldSnapshot snapshot;
+    takeSnapshot(world, snapshot);
+    for (const JointView& joint : snapshot.bodies.joints) {
+      EXPECT_LT((joint.anchor_a - joint.anchor_b).norm(), 5e-3) << name;
+    }
+  }
+  engine::World world = loadShipped("pendulum");
+  run(world, "pendulum", 1.005);  // half a period: at the other side, 30 degrees up
+  EXPECT_NEAR(centre(world, "bob").x(), -0.5, 0.01);
+}
+
+TEST(BodyScenesTest, NewtonsCradlePassesTheImpulseAlong) {
+  engine::World world = loadShipped("newtons_cradle");
+  double farthest = 0.0;
+  for (int i = 0; i < 240; ++i) {
+    world.step();
+    farthest = std::max(farthest, centre(world, "ball_3").x());
+  }
+  std::printf("[ scene ] newtons_cradle: the last ball reached x = %.3f m (rest 0.4)\n", farthest);
+  // The last ball swings out (to x = 1.04 m with no loss); the striker stops.
+  EXPECT_GT(farthest, 0.8);
+}
+
+TEST(BodyScenesTest, TheCapsuleChainHoldsTogether) {
+  engine::World world = loadShipped("capsule_chain");
+  run(world, "capsule_chain", 3.0);
+  WorldSnapshot snapshot;
+  takeSnapshot(world, snapshot);
+  double worst = 0.0;
+  for (const JointView& joint : snapshot.bodies.joints) {
+    worst = std::max(worst, (joint.anchor_a - joint.anchor_b).norm());
+  }
+  std::printf("[ scene ] capsule_chain: widest hinge gap %.2e m\n", worst);
+  EXPECT_LT(worst, 0.01);
+}
+
+TEST(BodyScenesTest, ParticlesRainOntoTheStack) {
+  engine::World world = loadShipped("particle_rain");
+  run(world, "particle_rain", 3.0);
+  // The stack stands under the grains; the grains stay above the ground.
+  EXPECT_GT(centre(world, "top").z(), 1.15);
+  const auto& x = world.particles().positions();
+  EXPECT_GT(x.row(2).minCoeff(), 0.0);
+  EXPECT_TRUE(x.allFinite());
+}
+
+TEST(BodyScenesTest, TheRopeHoldsTheBox) {
+  engine::World world = loadShipped("rope_box");
+  run(world, "rope_box", 3.0);
+  WorldSnapshot snapshot;
+  takeSnapshot(world, snapshot);
+  ASSERT_EQ(snapshot.bodies.joints.size(), 1u);
+  const double gap =
+      (snapshot.bodies.joints[0].anchor_a - snapshot.bodies.joints[0].anchor_b).norm();
+  std::printf("[ scene ] rope_box: ball joint gap %.3e m, crate at z = %.3f m\n", gap,
+              centre(world, "crate").z());
+  EXPECT_TRUE(world.particles().positions().allFinite());
+  EXPECT_GT(centre(world, "crate").z(), 0.2);
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace mass_aggregate_sim
