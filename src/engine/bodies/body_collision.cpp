@@ -99,10 +99,18 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
     for (const ShapeIndex s : bodies.shapesOf(i)) {
       BodyShape& shape = bodies.shapes()[s];
       const Aabb box = shapeBox(bodies, s, margin);
+      const Vec3 displacement = bodies.linearVelocity(i) * scene.dt;
+      // A body that has diverged (the world reports it; its policy may let it go on) leaves the
+      // tree, so it meets nothing, and comes back once its pose is finite again.
+      if (!box.lower.allFinite() || !box.upper.allFinite() || !displacement.allFinite()) {
+        if (shape.proxy >= 0) ws.tree.destroyProxy(shape.proxy);
+        shape.proxy = -1;
+        continue;
+      }
       if (shape.proxy < 0) {
         shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s));
       } else if (awake) {
-        ws.tree.moveProxy(shape.proxy, box, bodies.linearVelocity(i) * scene.dt);
+        ws.tree.moveProxy(shape.proxy, box, displacement);
       }
       if (awake) ws.moved.push_back(shape.proxy);
     }

@@ -180,6 +180,39 @@ TEST(BodyContact, ASphereRollsDownAnIncline) {
   EXPECT_NEAR(w * r, v, 0.01 * v);
 }
 
+TEST(BodyContact, ADivergedBodyLeavesTheBroadphaseAndComesBack) {
+  // A kinematic box spun at -1e305 rad/s turns non-finite; under kContinue the world steps on
+  // (this aborted in DynamicTree::moveProxy on a NaN box: fuzz regression
+  // engine-body-diverged-broadphase-assert). The other box keeps resting on its neighbour, and
+  // the diverged box, given a finite pose again, meets the ground again.
+  World world(config());
+  addGround(world);
+  BodySpec spun = body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5));
+  spun.type = BodyType::kKinematic;
+  const BodyId wild = *world.addBody(spun);
+  const BodyId rest = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(3.0, 0.0, 0.5)));
+  ASSERT_TRUE(world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(3.0, 0.0, 1.5))));
+  ASSERT_TRUE(world.setBodyVelocity(wild, Vec3::Zero(), Vec3(0.0, 0.0, -1e305)));
+  for (int step = 0; step < 5; ++step) world.step();
+  EXPECT_GT(world.divergenceCount(), 0u);
+  const auto touching = [&](const BodyId id) {
+    int n = 0;
+    for (const BodyContactReport& c : world.bodyContacts()) {
+      n += (c.body == id || c.other_body == id) && !c.points.empty() ? 1 : 0;
+    }
+    return n;
+  };
+  EXPECT_EQ(touching(rest), 2);  // the ground and the box on it
+  ASSERT_TRUE(world.setBodyPose(wild, Transform{Vec3(0.0, 0.0, 0.6), Quat::Identity()}));
+  ASSERT_TRUE(world.setBodyVelocity(wild, Vec3::Zero(), Vec3::Zero()));
+  for (int step = 0; step < 3; ++step) world.step();
+  EXPECT_TRUE(world.bodies().pose(*world.bodies().find(wild)).position.allFinite());
+  EXPECT_EQ(touching(wild), 0);  // kinematic against the ground: no contact kept
+  ASSERT_TRUE(world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 1.7))));
+  for (int step = 0; step < 30; ++step) world.step();
+  EXPECT_EQ(touching(wild), 1);  // the box dropped on it lands on it
+}
+
 }  // namespace
 }  // namespace engine
 }  // namespace mass_aggregate_sim
