@@ -113,7 +113,7 @@ TEST(BodyScenesTest, TheCapsuleChainHoldsTogether) {
     worst = std::max(worst, (joint.anchor_a - joint.anchor_b).norm());
   }
   std::printf("[ scene ] capsule_chain: widest hinge gap %.2e m\n", worst);
-  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(worst, 0.002);
 }
 
 TEST(BodyScenesTest, ParticlesRainOntoTheStack) {

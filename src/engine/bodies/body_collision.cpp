@@ -72,6 +72,36 @@ Material colliderMaterial(const Collider& c) {
   return c.material;
 }
 
+using IdPair = std::pair<std::uint64_t, std::uint64_t>;
+
+// The ends a joint keeps apart from contact (collide_connected false), sorted for lookups.
+void collectJoinedEnds(const Joints& joints, std::vector<IdPair>& bodies,
+                       std::vector<IdPair>& particles) {
+  bodies.clear();
+  particles.clear();
+  joints.forEach([&](const auto& array) {
+    for (const auto& joint : array) {
+      if (joint.collide_connected) continue;
+      const JointEnd& a = joint.a;
+      const JointEnd& b = joint.b;
+      if (a.isBody() && b.isBody()) {
+        bodies.emplace_back(std::min(a.body.packed(), b.body.packed()),
+                            std::max(a.body.packed(), b.body.packed()));
+      } else if (a.isBody() && b.isParticle()) {
+        particles.emplace_back(a.body.packed(), b.particle.packed());
+      } else if (a.isParticle() && b.isBody()) {
+        particles.emplace_back(b.body.packed(), a.particle.packed());
+      }
+    }
+  });
+  std::sort(bodies.begin(), bodies.end());
+  std::sort(particles.begin(), particles.end());
+}
+
+bool holds(const std::vector<IdPair>& pairs, const IdPair& pair) {
+  return !pairs.empty() && std::binary_search(pairs.begin(), pairs.end(), pair);
+}
+
 }  // namespace
 
 Material combineMaterials(const Material& a, const Material& b) {
@@ -108,7 +138,7 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
         continue;
       }
       if (shape.proxy < 0) {
-        shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s));
+        shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s), displacement);
       } else if (awake) {
         ws.tree.moveProxy(shape.proxy, box, displacement);
       }
@@ -128,17 +158,23 @@ void removeBodyProxies(BodyStore& bodies, const std::size_t dense, BodyWorkspace
 void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
   const BodyStore& bodies = scene.bodies;
   const Real speculative = scene.settings.speculative_distance;
-  // Speculative margins grow with the motion over the step, so fast bodies meet what they are
-  // about to hit (and bounce off it) instead of passing into it.
+  // Continuous collision: speculative margins grow with the motion over the step, so fast
+  // bodies meet what they are about to hit (and bounce off it) instead of passing into it.
   std::vector<Real>& travel = ws.travel;
   travel.resize(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    travel[i] = bodies.awake(i) ? scene.dt * (bodies.linearVelocity(i).norm() +
-                                              bodies.angularVelocity(i).norm() * bodies.reach(i))
-                                : 0.0;
+    travel[i] = scene.settings.continuous && bodies.awake(i)
+                    ? scene.dt * (bodies.linearVelocity(i).norm() +
+                                  bodies.angularVelocity(i).norm() * bodies.reach(i))
+                    : 0.0;
   }
   const auto travelOf = [&](const ShapeIndex s) {
     return travel[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
+  };
+  collectJoinedEnds(scene.joints, ws.joined_bodies, ws.joined_particles);
+  const auto joinedBodies = [&](const BodyId a, const BodyId b) {
+    return holds(ws.joined_bodies,
+                 IdPair{std::min(a.packed(), b.packed()), std::max(a.packed(), b.packed())});
   };
   std::vector<BodyContact>& found = ws.found;
   found.clear();
@@ -163,7 +199,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
         if (kx == ProxyKind::kShape && ky == ProxyKind::kShape) {
           const BodyShape& a = bodies.shapes()[proxyIndex(x)];
           const BodyShape& b = bodies.shapes()[proxyIndex(y)];
-          if (a.body == b.body) return false;
+          if (a.body == b.body || joinedBodies(a.body, b.body)) return false;
           const std::size_t ia = bodies.denseIndexUnchecked(a.body);
           const std::size_t ib = bodies.denseIndexUnchecked(b.body);
           // Two bodies that cannot move against each other never touch.
@@ -242,6 +278,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
         if (proxyKind(data) != ProxyKind::kShape) return true;
         const auto s = static_cast<ShapeIndex>(proxyIndex(data));
         const BodyShape& shape = bodies.shapes()[s];
+        if (holds(ws.joined_particles, IdPair{shape.body.packed(), id.packed()})) return true;
         keep(ContactKey{ContactOther::kParticle, s, id.packed()},
              collideAnyWith(shape.geometry, Frame(bodies.shapePose(s)), SphereShape{r},
                             Frame(center, Mat3::Identity()), margin + travelOf(s)),
@@ -278,7 +315,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     if (!a.live || awakeBody(bodies, a.body)) continue;
     if (kept.key.other == ContactOther::kShape) {
       const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(kept.key.b)];
-      if (!b.live || awakeBody(bodies, b.body)) continue;
+      if (!b.live || awakeBody(bodies, b.body) || joinedBodies(a.body, b.body)) continue;
     }
     found.push_back(kept);
   }

@@ -13,6 +13,7 @@
 #include "mass_aggregate_sim/engine/collision/collision_settings.h"
 #include "mass_aggregate_sim/engine/collision/particle_materials.h"
 #include "mass_aggregate_sim/engine/core/particle_store.h"
+#include "mass_aggregate_sim/engine/joints/joints.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -25,6 +26,9 @@ struct BodyCollisionScene {
   const CollisionSettings& collisions;
   const ParticleMaterials& materials;
   const BodySettings& settings;
+  // A joint whose collide_connected is false keeps its two ends (bodies, or a body and a
+  // particle) from touching: their contacts would fight it.
+  const Joints& joints;
   Real dt;
 };
 
@@ -34,7 +38,8 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
 // Removes a body's shapes from the tree (before the store forgets them).
 void removeBodyProxies(BodyStore& bodies, std::size_t dense, BodyWorkspace& ws);
 // The step's contacts into ws.contacts (sorted), each point's impulses carried over by key and
-// feature id. Contacts where no side is awake are kept as they were.
+// feature id. Contacts where no side is awake are kept as they were. Two ends of a joint that
+// does not collide_connected never touch.
 void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws);
 // Mean restitution and geometric-mean friction: the particles' rule, for every pair.
 Material combineMaterials(const Material& a, const Material& b);

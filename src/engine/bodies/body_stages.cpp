@@ -16,8 +16,9 @@ namespace engine {
 namespace {
 
 BodyCollisionScene collisionScene(const StepContext& ctx) {
-  return BodyCollisionScene{*ctx.bodies,    ctx.colliders, ctx.colliders_version, ctx.particles,
-                            ctx.collisions, ctx.materials, *ctx.body_settings,    ctx.dt};
+  return BodyCollisionScene{*ctx.bodies,        ctx.colliders,  ctx.colliders_version,
+                            ctx.particles,      ctx.collisions, ctx.materials,
+                            *ctx.body_settings, *ctx.joints,    ctx.dt};
 }
 
 // Contacts soften at most to a quarter of the substep rate (stiffer would be unstable); against

@@ -36,6 +36,10 @@ struct BodyWorkspace {
   std::vector<BodyContact> sorted;
   std::vector<std::pair<ContactKey, std::uint32_t>> keys;
   std::vector<Real> travel;  // per body: how far its points may move this step
+  // The ends of the joints that do not collide_connected, this step: (body, body) with the lower
+  // packed id first, and (body, particle), both as packed ids, sorted.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> joined_bodies;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> joined_particles;
 
   // This step: one solver body per awake dynamic or kinematic body, then one per particle that
   // touches a body or is held by a joint; kNoBody for the rest.

@@ -17,11 +17,29 @@ const Aabb kEmptyBox{Vec3::Constant(kInfinity), Vec3::Constant(-kInfinity)};
 
 DynamicTree::DynamicTree(const Real margin) : margin_(margin) {}
 
-std::int32_t DynamicTree::createProxy(const Aabb& tight, const std::uint64_t user_data) {
-  assert(tight.lower.allFinite() && tight.upper.allFinite());
+namespace {
+
+// The box swept by `tight` moved by `displacement`.
+Aabb swept(const Aabb& tight, const Vec3& displacement) {
+  Aabb box = tight;
+  for (int k = 0; k < 3; ++k) {
+    if (displacement[k] < 0.0) {
+      box.lower[k] += displacement[k];
+    } else {
+      box.upper[k] += displacement[k];
+    }
+  }
+  return box;
+}
+
+}  // namespace
+
+std::int32_t DynamicTree::createProxy(const Aabb& tight, const std::uint64_t user_data,
+                                      const Vec3& displacement) {
+  assert(tight.lower.allFinite() && tight.upper.allFinite() && displacement.allFinite());
   const std::int32_t proxy = allocateNode();
   Node& n = node(proxy);
-  n.box = tight.grown(margin_);
+  n.box = swept(tight, displacement).grown(margin_);
   n.user_data = user_data;
   n.height = 0;
   insertLeaf(proxy);
@@ -39,17 +57,10 @@ void DynamicTree::destroyProxy(const std::int32_t proxy) {
 bool DynamicTree::moveProxy(const std::int32_t proxy, const Aabb& tight, const Vec3& displacement) {
   assert(isProxy(proxy));
   assert(tight.lower.allFinite() && tight.upper.allFinite() && displacement.allFinite());
-  if (node(proxy).box.contains(tight)) return false;
+  const Aabb reach = swept(tight, displacement);
+  if (node(proxy).box.contains(reach)) return false;
   removeLeaf(proxy);
-  Aabb fat = tight.grown(margin_);
-  for (int k = 0; k < 3; ++k) {
-    if (displacement[k] < 0.0) {
-      fat.lower[k] += displacement[k];
-    } else {
-      fat.upper[k] += displacement[k];
-    }
-  }
-  node(proxy).box = fat;
+  node(proxy).box = reach.grown(margin_);
   insertLeaf(proxy);
   return true;
 }

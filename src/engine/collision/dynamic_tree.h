@@ -25,12 +25,14 @@ class DynamicTree {
 
   explicit DynamicTree(Real margin);
 
-  // Stores tight grown by the margin.
-  std::int32_t createProxy(const Aabb& tight, std::uint64_t user_data);
+  // Stores tight stretched by displacement (where it is expected to go next) and grown by the
+  // margin.
+  std::int32_t createProxy(const Aabb& tight, std::uint64_t user_data,
+                           const Vec3& displacement = Vec3::Zero());
   void destroyProxy(std::int32_t proxy);
-  // False, and nothing changes, while the stored box still contains tight. Otherwise stores tight
-  // grown by the margin and stretched by displacement (where it is expected to go next), moves the
-  // leaf to its new place and returns true.
+  // False, and nothing changes, while the stored box still contains tight stretched by
+  // displacement (a body that speeds up must reach as far as it will go). Otherwise stores that
+  // box grown by the margin, moves the leaf to its new place and returns true.
   bool moveProxy(std::int32_t proxy, const Aabb& tight, const Vec3& displacement);
 
   const Aabb& fatAabb(const std::int32_t proxy) const {

@@ -93,13 +93,14 @@ struct Scene {
     const Aabb to = shifted(tight[static_cast<std::size_t>(id)], step);
     const Aabb before = tree.fatAabb(id);
     const bool moved = tree.moveProxy(id, to, step);
-    EXPECT_EQ(moved, !before.contains(to));
+    // The box it will sweep next: to stretched by step.
+    const Aabb reach{to.lower + step.cwiseMin(Vec3::Zero()),
+                     to.upper + step.cwiseMax(Vec3::Zero())};
+    EXPECT_EQ(moved, !before.contains(reach));
     if (moved) {
-      const Aabb fat = to.grown(kMargin);
-      const Vec3 lower = fat.lower + step.cwiseMin(Vec3::Zero());
-      const Vec3 upper = fat.upper + step.cwiseMax(Vec3::Zero());
-      EXPECT_EQ(tree.fatAabb(id).lower, lower);
-      EXPECT_EQ(tree.fatAabb(id).upper, upper);
+      const Aabb fat = reach.grown(kMargin);
+      EXPECT_EQ(tree.fatAabb(id).lower, fat.lower);
+      EXPECT_EQ(tree.fatAabb(id).upper, fat.upper);
     } else {
       EXPECT_EQ(tree.fatAabb(id).lower, before.lower);
       EXPECT_EQ(tree.fatAabb(id).upper, before.upper);
@@ -308,13 +309,22 @@ TEST(DynamicTree, SmallMoveInsideTheFatBoxChangesNothing) {
   const Aabb box{Vec3::Zero(), Vec3::Ones()};
   const std::int32_t a = tree.createProxy(box, 7);
   const std::int32_t b = tree.createProxy(shifted(box, Vec3(3.0, 0.0, 0.0)), 8);
+  // Created moving: the box reaches where it goes in the first step.
+  const std::int32_t c =
+      tree.createProxy(shifted(box, Vec3(6.0, 0.0, 0.0)), 9, Vec3(0.0, 0.0, 2.0));
+  EXPECT_EQ(tree.fatAabb(c).lower, Vec3(6.0 - kMargin, -kMargin, -kMargin));
+  EXPECT_EQ(tree.fatAabb(c).upper, Vec3(7.0 + kMargin, 1.0 + kMargin, 3.0 + kMargin));
   EXPECT_EQ(tree.userData(a), 7u);
   EXPECT_EQ(tree.userData(b), 8u);
   const Aabb fat = tree.fatAabb(a);
   EXPECT_EQ(fat.lower, Vec3::Constant(-kMargin));
-  EXPECT_FALSE(tree.moveProxy(a, shifted(box, Vec3(0.05, -0.1, 0.0)), Vec3(0.05, -0.1, 0.0)));
+  EXPECT_FALSE(tree.moveProxy(a, shifted(box, Vec3(0.04, -0.05, 0.0)), Vec3(0.04, -0.05, 0.0)));
   EXPECT_EQ(tree.fatAabb(a).lower, fat.lower);
   EXPECT_EQ(tree.fatAabb(a).upper, fat.upper);
+  // Inside it now, but the next step's sweep would leave it: moved, so a body speeding up is met
+  // where it is going.
+  EXPECT_TRUE(tree.moveProxy(a, shifted(box, Vec3(0.04, -0.05, 0.0)), Vec3(0.0, -0.2, 0.0)));
+  EXPECT_EQ(tree.fatAabb(a).lower, Vec3(0.04 - kMargin, (-0.05 - 0.2) - kMargin, -kMargin));
   // Out of it: predicted along the displacement.
   EXPECT_TRUE(tree.moveProxy(a, shifted(box, Vec3(0.5, 0.0, 0.0)), Vec3(0.5, 0.0, -0.2)));
   EXPECT_EQ(tree.fatAabb(a).lower, Vec3(0.5 - kMargin, -kMargin, -0.2 - kMargin));

@@ -193,6 +193,62 @@ TEST(FixedJoint, HoldsTwoBodiesAsOne) {
   EXPECT_LT(relative.rotation.angularDistance(Quat::Identity()), 1e-3);
 }
 
+// Two boxes hinged edge to edge (they overlap by 1 cm at the hinge), lying on the ground, and a
+// particle held by a ball joint inside one of them. How many contacts join the joint's own ends
+// after a second, and the widest the hinge opened.
+struct JoinedEnds {
+  int body_body = 0;
+  int body_particle = 0;
+  Real widest_gap = 0.0;
+};
+JoinedEnds joinedEnds(const bool collide_connected) {
+  World world(config());
+  addGround(world);
+  const Vec3 half(0.255, 0.1, 0.1);
+  const BodyId a = *world.addBody(body(box(half), 1.0, Vec3(-0.25, 0.0, 0.1)));
+  const BodyId b = *world.addBody(body(box(half), 1.0, Vec3(0.25, 0.0, 0.1)));
+  HingeJoint hinge;
+  hinge.a = JointEnd::onBody(a, Vec3(0.25, 0.0, 0.0));
+  hinge.b = JointEnd::onBody(b, Vec3(-0.25, 0.0, 0.0));
+  hinge.axis = Vec3::UnitY();
+  hinge.collide_connected = collide_connected;
+  EXPECT_TRUE(world.addJoint(hinge));
+  ParticleSpec spec;
+  spec.position = Vec3(0.25, 0.0, 0.15);
+  spec.radius = 0.02;
+  const ParticleId p = *world.addParticle(spec);
+  BallJoint ball;
+  ball.a = JointEnd::onBody(b, Vec3(0.0, 0.0, 0.05));
+  ball.b = JointEnd::atParticle(p);
+  ball.collide_connected = collide_connected;
+  EXPECT_TRUE(world.addJoint(ball));
+  JoinedEnds ends;
+  for (int step = 0; step < 60; ++step) {
+    world.step();
+    const Transform pa = world.bodies().pose(*world.bodies().find(a));
+    const Transform pb = world.bodies().pose(*world.bodies().find(b));
+    ends.widest_gap = std::max(
+        ends.widest_gap, (pa.apply(Vec3(0.25, 0.0, 0.0)) - pb.apply(Vec3(-0.25, 0.0, 0.0))).norm());
+  }
+  for (const BodyContactReport& c : world.bodyContacts()) {
+    if (c.other == BodyContactReport::Other::kBody) ++ends.body_body;
+    if (c.other == BodyContactReport::Other::kParticle) ++ends.body_particle;
+  }
+  return ends;
+}
+
+TEST(JointEnds, DoNotTouchUnlessCollideConnected) {
+  const JoinedEnds apart = joinedEnds(false);
+  std::printf("[ joint ] hinged boxes on the ground: widest gap %.2e m apart, %.2e m touching\n",
+              apart.widest_gap, joinedEnds(true).widest_gap);
+  EXPECT_EQ(apart.body_body, 0);
+  EXPECT_EQ(apart.body_particle, 0);
+  EXPECT_LT(apart.widest_gap, 1e-3);
+  const JoinedEnds touching = joinedEnds(true);
+  EXPECT_GE(touching.body_body, 1);
+  EXPECT_GE(touching.body_particle, 1);
+}
+
 TEST(DistanceJoint, ARopeOfParticlesHoldsABox) {
   // A particle held to the world by a rod, the box hanging from the particle by a cable: the
   // box stays 1.5 m below the anchor (rod 1 m, cable 0.5 m), the cable's reaction carries it.

@@ -42,8 +42,13 @@ struct BodySettings {
   bool sleep = true;
   Real sleep_speed = 0.05;
   Real time_to_sleep = 0.5;
-  // Bodies moving further than this fraction of their smallest extent in a step are swept
-  // against static geometry (continuous collision).
+  // Continuous collision: a body's contacts are looked for as far out as it (and what it meets)
+  // can move in the step, |v| dt + |w| dt reach, and such a speculative row lets a gap close
+  // only as far as it is wide, so the body arrives on the surface at its time of impact within
+  // the substep and bounces from there, at any speed, against colliders and bodies alike. What it
+  // cannot see is a point that is not the nearest at the step's start (a long body spinning past
+  // an edge). Off: only speculative_distance, and a body crossing a thin wall in one substep
+  // passes through it.
   bool continuous = true;
   // The gyroscopic term w x I w, integrated implicitly; off only to see what it does (a body
   // spun about its intermediate axis then never flips, and angular momentum is not conserved).
