@@ -1,6 +1,9 @@
-// Implicit Euler: the linearised backward Euler solve (ImplicitEulerSolver), then
-// v' = (v + dv) d^h and x' = x + v' h. First order; unconditionally stable, and damps.
+// Implicit Euler: the linearised backward Euler solve (ImplicitEulerSolver), the particle damping
+// v' = ln(d) v inside it, then v' = v + dv and x' = x + v' h. First order; unconditionally stable,
+// and damps.
 #include "engine/integrators/implicit_euler.h"
+
+#include <cmath>
 
 #include "engine/integrators/integrators.h"
 #include "engine/world/step_context.h"
@@ -58,13 +61,22 @@ bool ImplicitEulerSolver::solve(const ForceGenerators& generators, const Particl
   gravity_magnitude_ = gravity_magnitude;
   h_ = h;
   movable_ = particles.mobility();
+  // Particle damping is the force m ln(d) v, so D gains m ln(d) I on the diagonal. A particle
+  // with d = 0 is held still over the step (the limit of ln(d) -> -inf: v' = 0, x' = x).
+  const auto damping = particles.dampings();
+  damping_rate_.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    damping_rate_[i] = damping[i] > 0.0 ? std::log(damping[i]) : 0.0;
+    if (damping[i] == 0.0) movable_[i] = 0.0;
+  }
   stiffness_times_v_.setZero(3, static_cast<Eigen::Index>(n));
   triplets_.clear();
   triplets_.reserve(3 * n + 18 * generators.size());
 
   for (std::size_t i = 0; i < n; ++i) {
     const Real mass = inverse_mass[i] > 0.0 ? 1.0 / inverse_mass[i] : 1.0;
-    addBlock(i, i, mass * Mat3::Identity());
+    // M - h D for the damping: m (1 - h ln d)
+    addBlock(i, i, mass * (1.0 - h * damping_rate_[i]) * Mat3::Identity());
   }
   generators.forEach([&](const auto& kind) {
     using Kind = typename std::decay_t<decltype(kind)>::value_type;
@@ -80,11 +92,14 @@ bool ImplicitEulerSolver::solve(const ForceGenerators& generators, const Particl
   if (solver_.info() != Eigen::Success) return false;
 
   rhs_.resize(size);
+  const auto v = particles.velocities();
   for (std::size_t i = 0; i < n; ++i) {
-    if (inverse_mass[i] > 0.0) {
-      // h (f0 + h K v), f0 = m a
+    if (movable_[i] != 0.0) {
+      // h (f0 + h K v), f0 = m a + m ln(d) v
+      const Real mass = 1.0 / inverse_mass[i];
       rhs_.segment<3>(static_cast<Eigen::Index>(3 * i)) =
-          h * (acceleration.col(i) / inverse_mass[i] + h * stiffness_times_v_.col(i));
+          h * (mass * (acceleration.col(i) + damping_rate_[i] * v.col(i)) +
+               h * stiffness_times_v_.col(i));
     } else {
       rhs_.segment<3>(static_cast<Eigen::Index>(3 * i)).setZero();
     }
@@ -109,10 +124,10 @@ void integrateImplicitEuler(StepContext& ctx) {
     ctx.reportDivergence(ParticleId{}, "implicit Euler: sparse factorisation failed");
     dv = h * a;
   }
-  const auto decay = ctx.caches.damping.decay;
+  const auto damping = particles.dampings();
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    // v' = (v + dv) d^h,  x' = x + v' h
-    v.col(i) = (v.col(i) + dv.col(i)) * decay[i];
+    // v' = v + dv (0 when d = 0),  x' = x + v' h
+    v.col(i) = damping[i] > 0.0 ? Vec3(v.col(i) + dv.col(i)) : Vec3::Zero();
     x.col(i) += v.col(i) * h;
   }
 }

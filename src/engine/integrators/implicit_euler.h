@@ -16,7 +16,8 @@ namespace engine {
 // Linearised backward Euler (Baraff and Witkin): with K = df/dx and D = df/dv at the start of the
 // step, f(x + dx, v + dv) ~ f0 + K dx + D dv and dx = h (v + dv), so
 //   (M - h D - h^2 K) dv = h (f0 + h K v).
-// Each force kind adds its own K and D (ForceKind::linearise); springs clamp their transverse
+// Each force kind adds its own K and D (ForceKind::linearise), the particle damping m ln(d) I
+// joins D and f0 (so backward Euler solves it too); springs clamp their transverse
 // stiffness so the matrix stays symmetric positive definite, and one sparse Cholesky solve gives
 // dv.
 class ImplicitEulerSolver : public ImplicitSystem {
@@ -47,6 +48,7 @@ class ImplicitEulerSolver : public ImplicitSystem {
   Real h_ = 0.0;
   Vec3Array stiffness_times_v_;
   ScalarArray movable_;
+  ScalarArray damping_rate_;  // ln(d) per particle (0 for d = 0, held still instead)
 
   std::vector<Eigen::Triplet<Real>> triplets_;
   Eigen::SparseMatrix<Real> matrix_;

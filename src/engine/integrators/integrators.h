@@ -2,9 +2,11 @@
 // The integrators, one policy per file: each advances the particles' velocities and positions by
 // one substep (ctx.h), asking the force stage (ctx.accelerations) for the forces as often as it
 // needs them. Particle damping, as the ODE term v' = ln(d) v, is part of each update:
-// * the first-order methods (explicit, semi-implicit and implicit Euler) take the seeds' update
-//   and scale the new velocity by d^h: a Lie splitting, first order like the methods themselves,
-//   exact for the decay alone and stable for every d in [0, 1];
+// * explicit and semi-implicit Euler take the seeds' update and scale the new velocity by d^h: a
+//   Lie splitting, first order like the methods themselves, exact for the decay alone and stable
+//   for every d in [0, 1];
+// * implicit Euler solves it backward with the other forces (the damping force m ln(d) v in its
+//   linear system);
 // * velocity and position Verlet solve the damping exactly inside each half kick (a Strang
 //   splitting: second order), and RK4 integrates it with its integrating factor (Lawson's form:
 //   fourth order); without damping all three are the textbook methods.
