@@ -113,7 +113,6 @@ StepContext World::beginStep() {
 void World::finalise(StepContext& ctx) {
   const std::uint64_t divergences_before = guard_->divergence_count;
   finaliseBodies(ctx);
-  detectBodyNonFinite(ctx);
   if (has_external_force_) {
     // Held for the step only. Velocity Verlet's cached accelerations never hold them.
     particles_.forces().setZero();
@@ -124,6 +123,8 @@ void World::finalise(StepContext& ctx) {
   ++step_count_;
   ctx.step = step_count_;
   ctx.time = time();
+  // After the count, as for particles: an event names the step that produced it and its end time.
+  detectBodyNonFinite(ctx);
   // Contact resolution and links remove energy but their position corrections may add a little:
   // a step with contacts takes a new reference instead of being judged.
   const bool had_contacts = ctx.contacts_active && last_contact_stats_.contacts > 0;

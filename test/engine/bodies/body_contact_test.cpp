@@ -116,6 +116,103 @@ TEST(BodyContact, ACoulombSlideStopsWhereFrictionSays) {
   EXPECT_LT(worst_w, 0.05);  // no tumbling
 }
 
+// A 1 kg unit cube sliding on the ground (mu 0.5 both) from v0 along `direction` (in the plane):
+// where it ends up along and across that direction, and when it stopped.
+struct ObliqueSlide {
+  Real along = 0.0;
+  Real across = 0.0;
+  Real stop_time = -1.0;
+  Real worst_w = 0.0;
+};
+
+ObliqueSlide slideAlong(const Vec3& direction, const Real v0) {
+  World world(config());
+  addGround(world, Material{0.0, 0.5});
+  BodySpec spec = body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, 0.5));
+  const Vec3 u = direction.normalized();
+  spec.linear_velocity = v0 * u;
+  const BodyId id = *world.addBody(spec);
+  const std::size_t i = *world.bodies().find(id);
+  ObliqueSlide slide;
+  for (int step = 1; step <= 120; ++step) {
+    world.step();
+    slide.worst_w = std::max(slide.worst_w, world.bodies().angularVelocity(i).norm());
+    if (slide.stop_time < 0.0 && world.bodies().linearVelocity(i).norm() < 0.01 * v0) {
+      slide.stop_time = step / 60.0;
+    }
+  }
+  Vec3 moved = world.bodies().position(i) - Vec3(0.0, 0.0, 0.5);
+  moved.z() = 0.0;
+  slide.along = moved.dot(u);
+  slide.across = (moved - slide.along * u).norm();
+  return slide;
+}
+
+TEST(BodyContact, AnObliqueSlideStopsWhereCoulombSaysWithoutDrift) {
+  // The ground's friction rows lie along its tangents t0 = y, t1 = -x. Coulomb's friction is
+  // mu m g against the velocity whatever its direction (the cone |f| <= mu N): the cube slides
+  // straight along its first direction and stops after v0^2 / (2 mu g) = 2.548 m and
+  // v0 / (mu g) = 1.019 s, as along x. Each row clamped alone to +-mu N (a box) would pull with
+  // mu N on both axes once both slide: along (1, 1) sqrt(2) mu m g, stopping after
+  // 2.548 / sqrt(2) = 1.80 m; along (3, 1) the y part stops first (after 0.32 s) and the path
+  // bends, ending 0.48 m to the side. So: 2 % along as for the slide along x, < 1 cm across.
+  // (Checked with the solver's rows clamped as a box: 1.79 m along (1, 1), 0.48 m across (3, 1).)
+  const Real v0 = 5.0;
+  const Real distance = v0 * v0 / (2.0 * 0.5 * kG);
+  const Real time = v0 / (0.5 * kG);
+  for (const Vec3& direction : {Vec3(1.0, 1.0, 0.0), Vec3(3.0, 1.0, 0.0), Vec3(-1.0, 2.0, 0.0)}) {
+    const ObliqueSlide slide = slideAlong(direction, v0);
+    std::printf(
+        "[ slide ] along (%g, %g): %.4f m along (exact %.4f), %.2e m across, stopped at "
+        "%.4f s (exact %.4f), |w| at most %.2e\n",
+        direction.x(), direction.y(), slide.along, distance, slide.across, slide.stop_time, time,
+        slide.worst_w);
+    EXPECT_NEAR(slide.along, distance, 0.02 * distance) << direction.transpose();
+    EXPECT_LT(slide.across, 0.01) << direction.transpose();
+    EXPECT_NEAR(slide.stop_time, time, 0.02 * time) << direction.transpose();
+    EXPECT_LT(slide.worst_w, 0.05) << direction.transpose();  // no tumbling
+  }
+}
+
+// A ball (r 0.25 m, 1 kg, frictionless, restitution e on both sides: the pair's is their mean, e)
+// 5 cm above the ground coming down at `speed` without gravity: its vertical velocity 0.5 s
+// later, long after the impact.
+Real reboundVelocity(const Real speed, const Real e, const Real threshold) {
+  World world(config(0.0));
+  BodySettings settings;
+  settings.restitution_threshold = threshold;
+  EXPECT_TRUE(world.setBodySettings(settings));
+  addGround(world, Material{e, 0.0});
+  BodySpec ball = body(sphere(0.25, Material{e, 0.0}), 1.0, Vec3(0.0, 0.0, 0.3));
+  ball.linear_velocity = Vec3(0.0, 0.0, -speed);
+  const BodyId id = *world.addBody(ball);
+  for (int step = 0; step < 30; ++step) world.step();
+  return world.bodies().linearVelocity(*world.bodies().find(id)).z();
+}
+
+TEST(BodyContact, RestitutionActsOnlyAboveTheThreshold) {
+  // A closing speed above BodySettings::restitution_threshold (1 m/s by default) bounces back at
+  // e v; at or below it the contact only stops the body (v = 0: it stays on the ground). With e
+  // = 1: 0.8 m/s in gives 0 out, 2 m/s in gives 2 m/s out; with e = 0.5, 2 m/s gives 1 m/s. The
+  // threshold is the setting: lowered to 0.5 m/s the 0.8 m/s ball bounces, raised to 3 m/s the
+  // 2 m/s one does not.
+  EXPECT_EQ(BodySettings{}.restitution_threshold, 1.0);
+  const Real slow = reboundVelocity(0.8, 1.0, 1.0);
+  const Real fast = reboundVelocity(2.0, 1.0, 1.0);
+  const Real half = reboundVelocity(2.0, 0.5, 1.0);
+  const Real slow_low_threshold = reboundVelocity(0.8, 1.0, 0.5);
+  const Real fast_high_threshold = reboundVelocity(2.0, 1.0, 3.0);
+  std::printf(
+      "[ threshold ] e 1: 0.8 m/s in, %.2e m/s out; 2 m/s in, %.6f m/s out; e 0.5: 2 m/s "
+      "in, %.6f m/s out; threshold 0.5: %.6f; threshold 3: %.2e\n",
+      slow, fast, half, slow_low_threshold, fast_high_threshold);
+  EXPECT_NEAR(slow, 0.0, 1e-6);
+  EXPECT_NEAR(fast, 2.0, 1e-6 * 2.0);
+  EXPECT_NEAR(half, 1.0, 1e-6 * 1.0);
+  EXPECT_NEAR(slow_low_threshold, 0.8, 1e-6 * 0.8);
+  EXPECT_NEAR(fast_high_threshold, 0.0, 1e-6);
+}
+
 // The plane tilted by `degrees` about y, rising along -x (down the slope is +x).
 Vec3 inclineNormal(const Real degrees) {
   const Real a = degrees * M_PI / 180.0;
@@ -157,9 +254,11 @@ TEST(BodyContact, ABoxSlidesDownASteepSlipperyIncline) {
   const Real v0 = world.bodies().linearVelocity(i).dot(down_slope);
   for (int step = 0; step < 60; ++step) world.step();
   const Real a = (world.bodies().linearVelocity(i).dot(down_slope) - v0) / 1.0;
-  // g (sin 30 - 0.1 cos 30) = 4.055 m/s^2
-  std::printf("[ incline ] box at 30 deg, mu 0.1: a = %.4f m/s^2\n", a);
-  EXPECT_NEAR(a, 4.055, 0.02 * 4.055);
+  // g (sin 30 - 0.1 cos 30) = 9.81 (0.5 - 0.0866) = 4.0554 m/s^2, to 1 %.
+  const Real exact = kG * (0.5 - 0.1 * std::cos(M_PI / 6.0));
+  std::printf("[ incline ] box at 30 deg, mu 0.1: a = %.4f m/s^2 (exact %.4f)\n", a, exact);
+  EXPECT_NEAR(exact, 4.055, 1e-3);
+  EXPECT_NEAR(a, exact, 0.01 * exact);
 }
 
 TEST(BodyContact, ASphereRollsDownAnIncline) {
@@ -171,12 +270,20 @@ TEST(BodyContact, ASphereRollsDownAnIncline) {
   const Vec3 start = world.bodies().position(i);
   for (int step = 0; step < 60; ++step) world.step();
   const Vec3 down_slope = downSlope(30.0);
-  // a = 5/7 g sin 30 = 3.504 m/s^2: 1.752 m after 1 s, rolling (w = v / r).
+  // Rolling without slipping, m a = m g sin 30 - f and I w' = f r with w = v / r,
+  // I = 2/5 m r^2: a = g sin 30 / (1 + 2/5) = 5/7 g sin 30 = 3.504 m/s^2, so after t = 1 s
+  // v = a t = 3.504 m/s down the slope and s = a t^2 / 2 = 1.752 m, rolling (w = v / r).
+  const Real a = 5.0 / 7.0 * kG * 0.5;
+  const Real t = 1.0;
   const Real distance = (world.bodies().position(i) - start).dot(down_slope);
   const Real v = world.bodies().linearVelocity(i).norm();
+  const Real v_down = world.bodies().linearVelocity(i).dot(down_slope);
   const Real w = world.bodies().angularVelocity(i).norm();
-  std::printf("[ roll ] %.4f m after 1 s, v %.4f m/s, w r %.4f m/s\n", distance, v, w * r);
+  std::printf("[ roll ] %.4f m after 1 s, v %.4f m/s (exact %.4f), w r %.4f m/s\n", distance, v,
+              a * t, w * r);
   EXPECT_NEAR(distance, 1.752, 0.01 * 1.752);
+  EXPECT_NEAR(v_down, a * t, 0.01 * a * t);
+  EXPECT_NEAR(v, v_down, 1e-3 * v);  // along the slope, not off it
   EXPECT_NEAR(w * r, v, 0.01 * v);
 }
 

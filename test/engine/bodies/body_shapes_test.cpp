@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/bodies/mass_properties.h"
+#include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -93,6 +97,126 @@ TEST(BodyShapeMass, CapsuleWithoutLengthIsASphere) {
   const SphereShape sphere{0.3};
   EXPECT_NEAR(Capsule::volume(capsule), Sphere::volume(sphere), 1e-12);
   EXPECT_TRUE(Capsule::unitInertia(capsule).isApprox(Sphere::unitInertia(sphere), 1e-9));
+}
+
+BodyShapeSpec partAt(const AnyBodyShape& geometry, const Vec3& position, const Real density,
+                     const Quat& rotation = Quat::Identity()) {
+  BodyShapeSpec shape;
+  shape.geometry = geometry;
+  shape.local.position = position;
+  shape.local.rotation = rotation;
+  shape.density = density;
+  return shape;
+}
+
+// A box's inertia about its centre in its own axes: m (b^2 + c^2) / 12 and so on, full extents.
+Vec3 boxInertia(const Real m, const Vec3& full) {
+  return m / 12.0 *
+         Vec3(full.y() * full.y() + full.z() * full.z(), full.z() * full.z() + full.x() * full.x(),
+              full.x() * full.x() + full.y() * full.y());
+}
+
+// Steiner's term for a part of mass m whose centre is d from the compound's:
+// m (|d|^2 E - d d^T).
+Mat3 parallelAxis(const Real m, const Vec3& d) {
+  return m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+}
+
+TEST(BodyShapeMass, TwoBoxesFollowTheParallelAxisTheorem) {
+  // Two unit cubes of 1000 kg/m^3 at x = -1 and x = +1: M = 2000 kg, centre at the origin,
+  // each cube m (1 + 1) / 12 = 166.67 kg m^2 about its own centre on every axis, plus
+  // m d^2 = 1000 kg m^2 about y and z (d = 1 m along x):
+  // I = diag(1000/3, 7000/3, 7000/3), axes the body's own (the tensor is diagonal).
+  const Result<MassProperties> computed =
+      computeMassProperties({partAt(BoxShape{Vec3::Constant(0.5)}, Vec3(-1.0, 0.0, 0.0), 1000.0),
+                             partAt(BoxShape{Vec3::Constant(0.5)}, Vec3(1.0, 0.0, 0.0), 1000.0)},
+                            0.0);
+  ASSERT_TRUE(computed);
+  const MassProperties& props = *computed;
+  EXPECT_NEAR(props.mass, 2000.0, 1e-9);
+  EXPECT_NEAR(props.volume, 2.0, 1e-12);
+  EXPECT_LT(props.frame.position.norm(), 1e-12);
+  EXPECT_TRUE(props.principal_inertia.isApprox(Vec3(1000.0, 7000.0, 7000.0) / 3.0, 1e-12))
+      << props.principal_inertia.transpose();
+  EXPECT_LT(props.frame.rotation.angularDistance(Quat::Identity()), 1e-12);
+  // The same shapes with a given mass of 10 kg: the same centre, the inertia scaled by 10 / 2000.
+  const Result<MassProperties> given_mass =
+      computeMassProperties({partAt(BoxShape{Vec3::Constant(0.5)}, Vec3(-1.0, 0.0, 0.0), 1000.0),
+                             partAt(BoxShape{Vec3::Constant(0.5)}, Vec3(1.0, 0.0, 0.0), 1000.0)},
+                            10.0);
+  ASSERT_TRUE(given_mass);
+  const MassProperties& given = *given_mass;
+  EXPECT_NEAR(given.mass, 10.0, 1e-12);
+  EXPECT_TRUE(given.principal_inertia.isApprox(Vec3(1.0, 7.0, 7.0) * 10.0 / 6.0, 1e-12));
+}
+
+TEST(BodyShapeMass, AnAsymmetricBoxAndSphereCompoundHasThePrincipalAxesOfItsTensor) {
+  // A 1 x 0.5 x 0.2 m box (1000 kg/m^3: m1 = 100 kg) at c1 = (0.2, -0.1, 0.3) turned 30 degrees
+  // about z, and a ball of radius 0.2 m (500 kg/m^3: m2 = 500 4/3 pi 0.2^3 = 16.755 kg) at
+  // c2 = (-0.6, 0.4, -0.2). Closed form: M = m1 + m2, c = (m1 c1 + m2 c2) / M,
+  //   I = R diag(I_box) R^T + 2/5 m2 r^2 E + sum_k m_k (|d_k|^2 E - d_k d_k^T),  d_k = c_k - c,
+  // with every off-diagonal term non-zero. Its principal moments are the roots of
+  // det(I - lambda E) = 0, so they must match its invariants: trace = l1 + l2 + l3, the sum of
+  // its 2x2 principal minors = l1 l2 + l2 l3 + l3 l1, det = l1 l2 l3. The mass frame's rotation
+  // R_p must be a rotation with I = R_p diag(l) R_p^T, each column an eigenvector.
+  const Real r = 0.2;
+  const Vec3 full(1.0, 0.5, 0.2);
+  const Vec3 c1(0.2, -0.1, 0.3);
+  const Vec3 c2(-0.6, 0.4, -0.2);
+  const Quat turn(Eigen::AngleAxisd(M_PI / 6.0, Vec3::UnitZ()));
+  const Result<MassProperties> computed = computeMassProperties(
+      {partAt(BoxShape{0.5 * full}, c1, 1000.0, turn), partAt(SphereShape{r}, c2, 500.0)}, 0.0);
+  ASSERT_TRUE(computed);
+  const MassProperties& props = *computed;
+  const Real m1 = 1000.0 * full.prod();
+  const Real m2 = 500.0 * 4.0 / 3.0 * M_PI * r * r * r;
+  const Real m = m1 + m2;
+  const Vec3 c = (m1 * c1 + m2 * c2) / m;
+  const Real cos30 = std::sqrt(3.0) / 2.0;
+  Mat3 rz;
+  rz << cos30, -0.5, 0.0, 0.5, cos30, 0.0, 0.0, 0.0, 1.0;
+  const Mat3 inertia = rz * boxInertia(m1, full).asDiagonal() * rz.transpose() +
+                       0.4 * m2 * r * r * Mat3::Identity() + parallelAxis(m1, c1 - c) +
+                       parallelAxis(m2, c2 - c);
+  EXPECT_NEAR(props.mass, m, 1e-12 * m);
+  EXPECT_LT((props.frame.position - c).norm(), 1e-12);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) EXPECT_GT(std::abs(inertia(i, j)), 0.1) << i << j;
+  }
+  const Vec3 l = props.principal_inertia;
+  const Real scale = inertia.trace();
+  const Real minors = inertia(0, 0) * inertia(1, 1) - inertia(0, 1) * inertia(1, 0) +
+                      inertia(1, 1) * inertia(2, 2) - inertia(1, 2) * inertia(2, 1) +
+                      inertia(2, 2) * inertia(0, 0) - inertia(2, 0) * inertia(0, 2);
+  EXPECT_NEAR(l.sum(), inertia.trace(), 1e-12 * scale);
+  EXPECT_NEAR(l.x() * l.y() + l.y() * l.z() + l.z() * l.x(), minors, 1e-12 * scale * scale);
+  EXPECT_NEAR(l.prod(), inertia.determinant(), 1e-12 * scale * scale * scale);
+  const Mat3 axes = props.frame.rotation.toRotationMatrix();
+  EXPECT_NEAR(axes.determinant(), 1.0, 1e-12);
+  EXPECT_LT((axes * l.asDiagonal() * axes.transpose() - inertia).norm(), 1e-12 * scale);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT((inertia * axes.col(k) - l[k] * axes.col(k)).norm(), 1e-12 * scale) << k;
+  }
+  std::printf("[ compound ] m %.4f kg, c (%.5f, %.5f, %.5f), principal (%.5f, %.5f, %.5f) kg m^2\n",
+              props.mass, c.x(), c.y(), c.z(), l.x(), l.y(), l.z());
+  // As a body in a world at a pose: its centre of mass and axes carried by the pose, its
+  // moments and mass as computed.
+  World world;
+  BodySpec spec;
+  spec.shapes = {partAt(BoxShape{0.5 * full}, c1, 1000.0, turn), partAt(SphereShape{r}, c2, 500.0)};
+  spec.pose.position = Vec3(1.0, 2.0, 3.0);
+  spec.pose.rotation = Quat(Eigen::AngleAxisd(0.4, Vec3(1.0, -2.0, 0.5).normalized()));
+  const BodyId id = *world.addBody(spec);
+  const std::size_t i = *world.bodies().find(id);
+  EXPECT_NEAR(world.bodies().mass(i), m, 1e-12 * m);
+  EXPECT_LT((world.bodies().position(i) - spec.pose.apply(c)).norm(), 1e-12);
+  EXPECT_TRUE(world.bodies().principalInertia(i).isApprox(l, 1e-12));
+  const Mat3 world_axes = world.bodies().orientation(i).toRotationMatrix();
+  const Mat3 pose_r = spec.pose.rotation.toRotationMatrix();
+  EXPECT_LT(
+      (world_axes * l.asDiagonal() * world_axes.transpose() - pose_r * inertia * pose_r.transpose())
+          .norm(),
+      1e-12 * scale);
 }
 
 TEST(BodyShapeAabb, TurnedShapes) {

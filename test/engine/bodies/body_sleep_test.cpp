@@ -1,0 +1,285 @@
+// Sleeping by islands (issue 14): an island sleeps once every body in it has been slower than
+// BodySettings::sleep_speed for time_to_sleep (0.5 s); the bodies of an island (joined by
+// contacts or joints) sleep and wake together; every request that touches a body wakes its
+// island, and a particle hitting a sleeping body wakes it, while other islands sleep on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "body_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+using namespace test_bodies;
+
+bool asleep(const World& world, const BodyId id) {
+  return !world.bodies().awake(*world.bodies().find(id));
+}
+
+// How the sleep stage measures a body's speed: the fastest any point of it can move.
+Real pointSpeed(const World& world, const BodyId id) {
+  const std::size_t i = *world.bodies().find(id);
+  return world.bodies().linearVelocity(i).norm() +
+         world.bodies().angularVelocity(i).norm() * world.bodies().reach(i);
+}
+
+// Steps of dt it takes to have been slow for time_to_sleep: each slow step adds dt to the body's
+// slow time, and the island sleeps in the step where that reaches time_to_sleep. 0.5 s / (1/60 s)
+// is 30 steps, but thirty additions of 1/60 give 0.49999999999999994 < 0.5 in doubles: the
+// 31st step (0.517 s) is the first, as the engine sums it.
+int stepsToSleep(const World& world) {
+  Real slow = 0.0;
+  int steps = 0;
+  while (slow < world.bodySettings().time_to_sleep) {
+    slow += world.config().dt;
+    ++steps;
+  }
+  return steps;
+}
+
+TEST(BodySleep, ABodySleepsAfterHalfASecondBelowTheSleepSpeed) {
+  // No gravity, no contact: a box drifting at 0.03 m/s (below sleep_speed, 0.05 m/s) is slow
+  // from its first step and sleeps once it has been slow for 0.5 s (in step 31, stepsToSleep),
+  // its velocity zeroed; one drifting at 0.06 m/s never sleeps.
+  World world(config(0.0));
+  EXPECT_EQ(world.bodySettings().time_to_sleep, 0.5);
+  EXPECT_EQ(world.bodySettings().sleep_speed, 0.05);
+  BodySpec slow = body(box(Vec3::Constant(0.5)), 1.0, Vec3::Zero());
+  slow.linear_velocity = Vec3(0.03, 0.0, 0.0);
+  BodySpec fast = body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 5.0, 0.0));
+  fast.linear_velocity = Vec3(0.06, 0.0, 0.0);
+  const BodyId slow_id = *world.addBody(slow);
+  const BodyId fast_id = *world.addBody(fast);
+  const int expected = stepsToSleep(world);
+  ASSERT_NEAR(expected * world.config().dt, 0.5, world.config().dt);
+  int slept_at = -1;
+  Vec3 where_it_slept = Vec3::Zero();
+  for (int step = 1; step <= 120; ++step) {
+    world.step();
+    if (slept_at < 0 && asleep(world, slow_id)) {
+      slept_at = step;
+      where_it_slept = world.bodies().position(*world.bodies().find(slow_id));
+    }
+  }
+  std::printf("[ sleep ] drifting at 0.03 m/s: asleep after step %d (%.4f s; expected %d)\n",
+              slept_at, slept_at / 60.0, expected);
+  EXPECT_EQ(slept_at, expected);
+  const std::size_t i = *world.bodies().find(slow_id);
+  EXPECT_TRUE(world.bodies().linearVelocity(i).isZero(0.0));
+  EXPECT_EQ(world.bodies().position(i), where_it_slept);  // not stepped while asleep
+  EXPECT_FALSE(asleep(world, fast_id));
+}
+
+TEST(BodySleep, ASlidingBoxSleepsHalfASecondAfterItSlowedDown) {
+  // A cube sent at 0.5 m/s along the ground (mu 0.5) slows at mu g = 4.905 m/s^2: below
+  // sleep_speed after (0.5 - 0.05) / (mu g) = 0.0917 s, so step 5 (0.083 s) is its last fast one.
+  // It sleeps 0.5 s of slow steps (stepsToSleep) after that.
+  World world(config());
+  addGround(world);
+  BodySpec spec = body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5));
+  spec.linear_velocity = Vec3(0.5, 0.0, 0.0);
+  const BodyId id = *world.addBody(spec);
+  int last_fast = 0;
+  int slept_at = -1;
+  for (int step = 1; step <= 120 && slept_at < 0; ++step) {
+    world.step();
+    if (asleep(world, id)) {
+      slept_at = step;
+    } else if (pointSpeed(world, id) >= world.bodySettings().sleep_speed) {
+      last_fast = step;
+    }
+  }
+  std::printf("[ sleep ] sliding box: last fast in step %d (%.4f s), asleep after step %d\n",
+              last_fast, last_fast / 60.0, slept_at);
+  EXPECT_EQ(last_fast, static_cast<int>(std::floor((0.5 - 0.05) / (0.5 * kG) * 60.0)));
+  EXPECT_EQ(slept_at, last_fast + stepsToSleep(world));
+}
+
+TEST(BodySleep, AnIslandStaysAwakeWhileOneOfItsBodiesMoves) {
+  // Without gravity, box a rests; box b, 1 m from it, moves away at 0.1 m/s. Tied to a by a
+  // slack 3 m cable (taut only after 20 s) it is in a's island, and a never sleeps in 2 s; the
+  // same pair without the cable: a sleeps after 0.5 s.
+  for (const bool tied : {true, false}) {
+    World world(config(0.0));
+    const BodyId a = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3::Zero()));
+    BodySpec moving = body(box(Vec3::Constant(0.25)), 1.0, Vec3(1.0, 0.0, 0.0));
+    moving.linear_velocity = Vec3(0.1, 0.0, 0.0);
+    const BodyId b = *world.addBody(moving);
+    if (tied) {
+      ASSERT_TRUE(
+          world.addJoint(DistanceJoint::cable(JointEnd::onBody(a), JointEnd::onBody(b), 3.0)));
+    }
+    int slept_at = -1;
+    for (int step = 1; step <= 120 && slept_at < 0; ++step) {
+      world.step();
+      if (asleep(world, a)) slept_at = step;
+    }
+    std::printf("[ sleep ] resting box %s a moving one: asleep after step %d\n",
+                tied ? "tied to" : "apart from", slept_at);
+    EXPECT_EQ(slept_at, tied ? -1 : stepsToSleep(world));
+    EXPECT_FALSE(asleep(world, b));
+  }
+}
+
+TEST(BodySleep, TwoBodiesJoinedByAJointSleepAndWakeTogether) {
+  // Without gravity two boxes joined by a ball joint, both at rest, and a third alone: all are
+  // slow from the first step and sleep after 0.5 s of it (stepsToSleep), the joined two in the
+  // same step. Waking one of the joined two wakes the other (its island), not the third.
+  World world(config(0.0));
+  const BodyId a = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3::Zero()));
+  const BodyId b = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(1.0, 0.0, 0.0)));
+  const BodyId alone = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(5.0, 0.0, 0.0)));
+  ASSERT_TRUE(world.addJoint(
+      BallJoint{JointEnd::onBody(a, Vec3(0.5, 0.0, 0.0)), JointEnd::onBody(b, Vec3(-0.5, 0, 0))}));
+  int a_slept = -1;
+  int b_slept = -1;
+  for (int step = 1; step <= 60; ++step) {
+    world.step();
+    if (a_slept < 0 && asleep(world, a)) a_slept = step;
+    if (b_slept < 0 && asleep(world, b)) b_slept = step;
+  }
+  std::printf("[ sleep ] jointed pair asleep after steps %d and %d\n", a_slept, b_slept);
+  EXPECT_EQ(a_slept, stepsToSleep(world));
+  EXPECT_EQ(b_slept, a_slept);
+  ASSERT_TRUE(asleep(world, alone));
+  ASSERT_TRUE(world.wakeBody(b));
+  EXPECT_FALSE(asleep(world, a));
+  EXPECT_FALSE(asleep(world, b));
+  EXPECT_TRUE(asleep(world, alone));
+}
+
+// Two unit cubes stacked on the ground (an island by their contact), a third apart (an island of
+// its own) dropped from 5 cm so that it settles later, and a hinge about y holding the top of the
+// upper cube to the world (at rest it pulls nothing). Stepped until all three sleep.
+struct SleepingScene {
+  World world{config()};
+  BodyId lower;
+  BodyId upper;
+  BodyId apart;
+  JointId hinge = 0;
+  int lower_slept = -1;
+  int upper_slept = -1;
+  int apart_slept = -1;
+};
+
+SleepingScene sleepingScene() {
+  SleepingScene s;
+  addGround(s.world);
+  s.lower = *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5)));
+  s.upper = *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 1.5)));
+  s.apart = *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(5.0, 0.0, 0.55)));
+  HingeJoint hinge;
+  hinge.a = JointEnd::inWorld(Vec3(0.0, 0.0, 2.0));
+  hinge.b = JointEnd::onBody(s.upper, Vec3(0.0, 0.0, 0.5));
+  hinge.axis = Vec3::UnitY();
+  s.hinge = *s.world.addJoint(hinge);
+  for (int step = 1; step <= 180; ++step) {
+    s.world.step();
+    if (s.lower_slept < 0 && asleep(s.world, s.lower)) s.lower_slept = step;
+    if (s.upper_slept < 0 && asleep(s.world, s.upper)) s.upper_slept = step;
+    if (s.apart_slept < 0 && asleep(s.world, s.apart)) s.apart_slept = step;
+  }
+  return s;
+}
+
+TEST(BodySleep, AStackSleepsAndWakesAsOneIsland) {
+  SleepingScene s = sleepingScene();
+  std::printf("[ sleep ] stack asleep after steps %d (lower) and %d (upper), the box apart %d\n",
+              s.lower_slept, s.upper_slept, s.apart_slept);
+  ASSERT_GT(s.lower_slept, 0);
+  EXPECT_EQ(s.lower_slept, s.upper_slept);  // one island: together
+  ASSERT_GT(s.apart_slept, 0);
+  EXPECT_GT(s.apart_slept, s.lower_slept);  // its own island: on its own time
+  // Waking either cube of the stack wakes both, and only them.
+  for (const bool wake_lower : {true, false}) {
+    SleepingScene copy = s;
+    ASSERT_TRUE(copy.world.wakeBody(wake_lower ? copy.lower : copy.upper));
+    EXPECT_FALSE(asleep(copy.world, copy.lower));
+    EXPECT_FALSE(asleep(copy.world, copy.upper));
+    EXPECT_TRUE(asleep(copy.world, copy.apart));
+    // Left alone, they sleep again together, 0.5 s later.
+    int lower_again = -1;
+    int upper_again = -1;
+    for (int step = 1; step <= 60; ++step) {
+      copy.world.step();
+      if (lower_again < 0 && asleep(copy.world, copy.lower)) lower_again = step;
+      if (upper_again < 0 && asleep(copy.world, copy.upper)) upper_again = step;
+    }
+    EXPECT_EQ(lower_again, stepsToSleep(copy.world));
+    EXPECT_EQ(upper_again, lower_again);
+  }
+}
+
+TEST(BodySleep, EveryRequestOnABodyWakesItsIsland) {
+  const SleepingScene s = sleepingScene();
+  ASSERT_TRUE(asleep(s.world, s.lower) && asleep(s.world, s.upper) && asleep(s.world, s.apart));
+  const std::size_t upper = *s.world.bodies().find(s.upper);
+  const Transform pose = s.world.bodies().pose(upper);
+  const Vec3 top = pose.apply(Vec3(0.0, 0.0, 0.5));
+  // Each request on the upper cube (or its hinge), made on a copy of the sleeping scene.
+  const std::vector<std::pair<std::string, std::function<Status(World&)>>> requests = {
+      {"setBodyPose", [&](World& w) { return w.setBodyPose(s.upper, pose); }},
+      {"setBodyVelocity",
+       [&](World& w) { return w.setBodyVelocity(s.upper, Vec3::Zero(), Vec3::Zero()); }},
+      {"addBodyForce", [&](World& w) { return w.addBodyForce(s.upper, Vec3(0.1, 0, 0), top); }},
+      {"addBodyTorque", [&](World& w) { return w.addBodyTorque(s.upper, Vec3(0, 0, 0.1)); }},
+      {"applyBodyImpulse",
+       [&](World& w) { return w.applyBodyImpulse(s.upper, Vec3(0.01, 0, 0), top); }},
+      {"addJoint",
+       [&](World& w) {
+         return w
+             .addJoint(
+                 BallJoint{JointEnd::inWorld(top), JointEnd::onBody(s.upper, Vec3(0, 0, 0.5))})
+             .status();
+       }},
+      {"removeJoint", [&](World& w) { return w.removeJoint(s.hinge); }},
+      {"setHingeMotor", [&](World& w) { return w.setHingeMotor(s.hinge, true, 0.0, 1.0); }},
+      {"wakeBody", [&](World& w) { return w.wakeBody(s.upper); }},
+  };
+  for (const auto& [name, request] : requests) {
+    World world = s.world;
+    ASSERT_TRUE(request(world)) << name;
+    EXPECT_FALSE(asleep(world, s.upper)) << name;
+    EXPECT_FALSE(asleep(world, s.lower)) << name << " (the other cube of the island)";
+    EXPECT_TRUE(asleep(world, s.apart)) << name << " (another island)";
+  }
+}
+
+TEST(BodySleep, AParticleHittingASleepingBodyWakesItsIsland) {
+  // A 0.1 kg particle dropped from 0.5 m above the sleeping stack hits the upper cube at
+  // 3 m/s: the stack wakes (both cubes), the box apart sleeps on.
+  const SleepingScene s = sleepingScene();
+  World world = s.world;
+  ParticleSpec spec;
+  spec.position = Vec3(0.1, 0.0, 2.5);
+  spec.velocity = Vec3(0.0, 0.0, -3.0);
+  spec.inverse_mass = 10.0;
+  spec.radius = 0.05;
+  ASSERT_TRUE(world.addParticle(spec));
+  EXPECT_TRUE(asleep(world, s.upper));  // adding a particle touches no body
+  int lower_woke = -1;
+  int upper_woke = -1;
+  bool apart_woke = false;
+  for (int step = 1; step <= 30; ++step) {
+    world.step();
+    if (lower_woke < 0 && !asleep(world, s.lower)) lower_woke = step;
+    if (upper_woke < 0 && !asleep(world, s.upper)) upper_woke = step;
+    apart_woke = apart_woke || !asleep(world, s.apart);
+  }
+  // It reaches the cube's top (z = 2.05 for its centre) after 0.45 m at ~3 m/s: step 9 or so.
+  std::printf("[ sleep ] particle on the sleeping stack: upper woke in step %d, lower in %d\n",
+              upper_woke, lower_woke);
+  EXPECT_GT(upper_woke, 0);
+  EXPECT_LE(upper_woke, 12);
+  EXPECT_EQ(lower_woke, upper_woke);
+  EXPECT_FALSE(apart_woke);
+}
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim
