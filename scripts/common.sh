@@ -81,6 +81,12 @@ mas_build() {
   set -u
 }
 
+# mas_sanitizer_ws: the workspace of the clang build with the sanitizers (scripts/sanitizer_tests.sh),
+# whose libraries the fuzz targets link (scripts/fuzz.sh).
+mas_sanitizer_ws() {
+  echo "${MAS_SANITIZER_WS:-${WS_DIR}-sanitize}"
+}
+
 # mas_failure_xml FILE SUITE CLASS NAME MESSAGE: a JUnit file with one failed test case, for a
 # stage that could not produce its own (build failure, crash), so the closing count sees it.
 mas_failure_xml() {

@@ -129,8 +129,13 @@ TEST_P(AppliedForce, RequestsOnOneParticleLeaveTheOthersAlone) {
     }
     return std::make_pair(std::move(world), watched);
   };
-  auto [alone, alone_id] = scene(false);
-  auto [busy, busy_id] = scene(true);
+  // Named pairs, not structured bindings: lambdas may not capture those before C++20.
+  auto alone_scene = scene(false);
+  auto busy_scene = scene(true);
+  World& alone = alone_scene.first;
+  World& busy = busy_scene.first;
+  const ParticleId alone_id = alone_scene.second;
+  const ParticleId busy_id = busy_scene.second;
   const ParticleId other = busy.particles().idAt(1);
   const auto expectSame = [&](const char* after) {
     EXPECT_EQ(position(busy, busy_id), position(alone, alone_id)) << after;
