@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Usage: scripts/accuracy_study.sh OUTDIR
 # Builds and runs the accuracy study (bench/study), then plots its CSV files into PNGs in OUTDIR:
-# work-precision and error-vs-dt per problem, the stability map and the energy drift.
+# work-precision and error-vs-dt per particle problem, the stability map, the energy drift, and
+# for the rigid-body problems work-precision and error-against-iterations per substep count.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 if [ $# -ne 1 ]; then
   echo "usage: $0 OUTDIR" >&2

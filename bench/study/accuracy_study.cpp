@@ -4,6 +4,8 @@
 //   stability_map.csv    largest stable omega*dt per integrator (bisection) next to theory
 //   energy_drift.csv     relative energy error over 1e5 steps per integrator (sampled)
 //   energy_drift_summary.csv, recommendations.csv and recommendations.md (the table for users)
+// and, for rigid bodies (issue 14, body_study.h), body_work_precision.csv and
+// body_recommendations.csv / .md.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,8 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "body_study.h"
 #include "mass_aggregate_sim/engine/world/stability.h"
 #include "reference_problems.h"
+#include "study_io.h"
 
 namespace mass_aggregate_sim {
 namespace study {
@@ -35,19 +39,6 @@ const Integrator kIntegrators[] = {Integrator::kExplicitEuler,
 const Real kTimeSteps[] = {0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 0.0005, 0.0002};
 // Errors above this (or not finite) count as diverged.
 constexpr Real kDiverged = 1e3;
-
-double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-FILE* openCsv(const std::string& dir, const std::string& name, const char* header) {
-  const std::string path = dir + "/" + name;
-  FILE* file = std::fopen(path.c_str(), "w");
-  if (!file) {
-    std::fprintf(stderr, "cannot write %s\n", path.c_str());
-    std::exit(1);
-  }
-  std::fprintf(file, "%s\n", header);
-  return file;
-}
 
 Real maxPositionError(const Vec3Array& a, const Vec3Array& b) {
   Real worst = 0.0;
@@ -90,7 +81,7 @@ std::vector<Sample> workPrecision(const std::string& dir) {
           result = finalPositions(problem, integrator, dt);
           ++runs;
           elapsed = cpuSeconds() - start;
-        } while (elapsed < 0.02);
+        } while (elapsed < kMinimumCpuSeconds);
         const Real error = maxPositionError(result, reference);
         const bool diverged = !(error < kDiverged);
         const Real cost = elapsed / runs / problem.duration;
@@ -260,6 +251,7 @@ int main(int argc, char** argv) {
   recommendations(dir, samples);
   stabilityMap(dir);
   energyDrift(dir);
+  bodyStudy(dir);
   std::fprintf(stderr, "wrote CSV files to %s\n", dir.c_str());
   return 0;
 }
