@@ -34,8 +34,11 @@ bool awakeBody(const BodyStore& bodies, const BodyId id) {
   return bodies.awake(bodies.denseIndexUnchecked(id));
 }
 
-// Carries the impulses of the old contact's points over to the new one's by feature id.
+// Carries the impulses of the old contact's points over to the new one's by feature id, and the
+// coupled masses it kept inverted (prepareContact inverts them again when they have changed).
 void carryImpulses(const BodyContact& old, BodyContact& contact) {
+  contact.coupled = old.coupled;
+  contact.upper_alone = old.upper_alone;
   for (int k = 0; k < contact.manifold.count; ++k) {
     for (int j = 0; j < old.manifold.count; ++j) {
       if (old.manifold.points[j].id == contact.manifold.points[k].id) {
@@ -128,6 +131,7 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
     const bool awake = bodies.awake(i);
     for (const ShapeIndex s : bodies.shapesOf(i)) {
       BodyShape& shape = bodies.shapes()[s];
+      if (!awake && shape.proxy >= 0) continue;  // asleep where it was put
       const Aabb box = shapeBox(bodies, s, margin);
       const Vec3 displacement = bodies.linearVelocity(i) * scene.dt;
       // A body that has diverged (the world reports it; its policy may let it go on) leaves the
@@ -139,7 +143,7 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
       }
       if (shape.proxy < 0) {
         shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s), displacement);
-      } else if (awake) {
+      } else {
         ws.tree.moveProxy(shape.proxy, box, displacement);
       }
       if (awake) ws.moved.push_back(shape.proxy);

@@ -315,6 +315,18 @@ void generateBodyContacts(StepContext& ctx) {
   BodyStore& bodies = *ctx.bodies;
   BodyWorkspace& ws = *ctx.body_ws;
   const BodySettings& settings = *ctx.body_settings;
+  // Nothing moves and no particle can wake anything: the contacts stay as they are, no row is
+  // made (a sleeping pile costs next to nothing).
+  if (ws.solver.empty() && ctx.particles.empty()) {
+    ws.constraints.clear();
+    ws.constraint_sides.clear();
+    ws.shock_rows.clear();
+    ws.link_joints.clear();
+    ws.link_rows.clear();
+    for (std::vector<JointRow>& rows : ws.joints.of_kind) rows.clear();
+    ws.prepared = false;
+    return;
+  }
   findBodyContacts(collisionScene(ctx), ws);
   // A sleeping island touched by an awake body wakes now; its contacts are made next step.
   if (wakeTouchedIslands(bodies, ws, *ctx.joints)) {
@@ -406,6 +418,7 @@ void solveBodyConstraints(StepContext& ctx) {
   if (!ctx.bodies || !ctx.body_ws->prepared) return;
   loadParticles(ctx);
   warmStart(ctx);
+  takeSeparations(ctx.body_ws->constraints, ctx.body_ws->solver);
   for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
   BodyWorkspace& ws = *ctx.body_ws;
   propagateShock(ws.shock_rows, ws.constraints, ws.solver, contactPass(ctx, true, false));
@@ -428,6 +441,7 @@ void integrateBodyPositions(StepContext& ctx) {
   }
   if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
   loadParticles(ctx);
+  takeSeparations(ws.constraints, ws.solver);
   for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false, i % 2 == 1);
   storeParticles(ctx, false);
 }

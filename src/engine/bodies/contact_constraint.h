@@ -23,8 +23,15 @@ struct ContactConstraintPoint {
   Vec3 rn_b = Vec3::Zero();
   Vec3 turn_a = Vec3::Zero();
   Vec3 turn_b = Vec3::Zero();
-  // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors.
+  // The same for the two friction rows along the tangents t_k: r x t_k and I^-1 (r x t_k).
+  Vec3 rt_a[2] = {Vec3::Zero(), Vec3::Zero()};
+  Vec3 rt_b[2] = {Vec3::Zero(), Vec3::Zero()};
+  Vec3 turn_t_a[2] = {Vec3::Zero(), Vec3::Zero()};
+  Vec3 turn_t_b[2] = {Vec3::Zero(), Vec3::Zero()};
+  // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors;
+  // `current` is that, taken once a substep (the anchors move only between substeps).
   Real separation = 0.0;
+  Real current = 0.0;
   Real normal_mass = 0.0;
   Real tangent_mass[2] = {0.0, 0.0};
   Real normal_impulse = 0.0;

@@ -64,6 +64,9 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
 // other contact's impulses of the last substep again.
 void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
                        const ContactPass& pass);
+// Each point's separation now (ContactConstraintPoint::current), for the passes of a substep:
+// after the warm start (an impact moves its bodies) and after the positions move.
+void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies);
 // One pass over the contacts; with use_bias the overlap is pushed out (softly, at most
 // max_push_speed), speculative gaps may close no faster than they can within h, and impacts are
 // resolved.

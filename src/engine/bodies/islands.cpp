@@ -89,15 +89,17 @@ void updateSleep(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joint
                  const std::vector<std::uint8_t>& busy) {
   const std::size_t n = bodies.size();
   // A body is slow when no point of it moves faster than sleep_speed: |v| + |w| reach.
+  bool any_awake = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!bodies.dynamic(i) || !bodies.awake(i)) continue;
+    any_awake = true;
     const Real speed =
         bodies.linearVelocity(i).norm() + bodies.angularVelocity(i).norm() * bodies.reach(i);
     const bool slow =
         bodies.canSleep(i) && speed < settings.sleep_speed && (i >= busy.size() || !busy[i]);
     bodies.sleepTime(i) = slow ? bodies.sleepTime(i) + dt : 0.0;
   }
-  if (!settings.sleep) return;
+  if (!settings.sleep || !any_awake) return;
   UnionFind islands(n);
   forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
     if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
@@ -119,7 +121,8 @@ void updateSleep(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joint
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!bodies.dynamic(i) || !bodies.awake(i)) continue;
-    if (least[islands.find(i)] < settings.time_to_sleep) continue;
+    // To the nearest step: thirty additions of 1/60 s fall a hair short of 0.5 s.
+    if (least[islands.find(i)] < settings.time_to_sleep - 0.5 * dt) continue;
     bodies.setAwake(i, false);
     bodies.linearVelocity(i).setZero();
     bodies.angularVelocity(i).setZero();

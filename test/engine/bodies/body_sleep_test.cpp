@@ -29,13 +29,13 @@ Real pointSpeed(const World& world, const BodyId id) {
 }
 
 // Steps of dt it takes to have been slow for time_to_sleep: each slow step adds dt to the body's
-// slow time, and the island sleeps in the step where that reaches time_to_sleep. 0.5 s / (1/60 s)
-// is 30 steps, but thirty additions of 1/60 give 0.49999999999999994 < 0.5 in doubles: the
-// 31st step (0.517 s) is the first, as the engine sums it.
+// slow time, and the island sleeps in the step where that reaches time_to_sleep to the nearest
+// step (thirty additions of 1/60 give 0.49999999999999994, not 0.5, in doubles): 30 steps for
+// 0.5 s at 60 Hz.
 int stepsToSleep(const World& world) {
   Real slow = 0.0;
   int steps = 0;
-  while (slow < world.bodySettings().time_to_sleep) {
+  while (slow < world.bodySettings().time_to_sleep - 0.5 * world.config().dt) {
     slow += world.config().dt;
     ++steps;
   }
@@ -44,7 +44,7 @@ int stepsToSleep(const World& world) {
 
 TEST(BodySleep, ABodySleepsAfterHalfASecondBelowTheSleepSpeed) {
   // No gravity, no contact: a box drifting at 0.03 m/s (below sleep_speed, 0.05 m/s) is slow
-  // from its first step and sleeps once it has been slow for 0.5 s (in step 31, stepsToSleep),
+  // from its first step and sleeps once it has been slow for 0.5 s (in step 30, stepsToSleep),
   // its velocity zeroed; one drifting at 0.06 m/s never sleeps.
   World world(config(0.0));
   EXPECT_EQ(world.bodySettings().time_to_sleep, 0.5);

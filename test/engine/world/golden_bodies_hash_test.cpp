@@ -14,7 +14,7 @@ namespace {
 
 using namespace test_bodies;
 
-constexpr std::uint64_t kBodiesGoldenHash = 0x2b1e10cd139c0d20ull;
+constexpr std::uint64_t kBodiesGoldenHash = 0x75338ea494c51fa1ull;
 constexpr int kBodiesGoldenSteps = 600;
 
 // A stack of three boxes (asleep by the end), a hinged rod swinging, a chain of three spheres on

@@ -1,0 +1,192 @@
+// The engine's rigid bodies on the shared rigid scenes of rigid_scenes.h, measured as
+// bullet_peer_bench.cpp measures Bullet, so the two tables compare line for line.
+//
+// Arguments of every case: /<scene size>/<substeps>/<sleeping>. A frame is one World::step() of
+// 1/60 s with BodySettings::substeps = substeps and every other body setting at its default
+// (2 iterations); sleeping = 0 turns sleeping off, 1 keeps the default (an island slow for 0.5 s
+// sleeps).
+//
+// Each case builds its scene and simulates 10 s untimed, recording the mean cost of a frame over
+// those 10 s (settle_ms: the falling, stacking and settling a user watches) and the at-rest
+// quality at their end (counters); then it times a fixed number of further frames: Time and CPU
+// are per frame, one thread.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/world/world.h"
+#include "rigid_scenes.h"
+
+namespace mass_aggregate_sim {
+namespace bench {
+namespace rigid {
+namespace {
+
+using engine::BodyId;
+using engine::Real;
+using engine::Vec3;
+
+constexpr int kSettleFrames = 600;  // 10 s
+
+engine::BodyShapeSpec shapeOf(const BodySpec& spec) {
+  engine::BodyShapeSpec shape;
+  if (spec.shape == ShapeType::kSphere) {
+    shape.geometry = engine::SphereShape{spec.radius};
+  } else {
+    shape.geometry = engine::BoxShape{spec.half_extents};
+  }
+  shape.material = engine::Material{spec.restitution, spec.friction};
+  return shape;
+}
+
+struct AtRest {
+  double kinetic_energy = 0.0;
+  double top_drop = 0.0;
+  double top_distance = 0.0;
+  double max_penetration = 0.0;
+  int contacts = 0;
+  int escaped = 0;
+  int asleep = 0;
+};
+
+class EngineWorld {
+ public:
+  EngineWorld(const RigidScene& scene, const int substeps, const bool sleeping) : scene_(scene) {
+    engine::WorldConfig config;
+    config.dt = 1.0 / 60.0;
+    config.gravity = scene.gravity;
+    world_ = *engine::World::create(config);
+    engine::BodySettings settings;
+    settings.substeps = substeps;
+    settings.sleep = sleeping;
+    world_.setBodySettings(settings);
+    engine::PlaneCollider ground;
+    ground.normal = Vec3::UnitZ();
+    ground.offset = scene.ground.height;
+    ground.material = engine::Material{scene.ground.restitution, scene.ground.friction};
+    world_.addCollider(ground);
+    ids_.reserve(scene.bodies.size());
+    for (const BodySpec& spec : scene.bodies) {
+      engine::BodySpec body;
+      body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
+      body.pose.position = spec.position;
+      body.pose.rotation = spec.orientation;
+      body.shapes = {shapeOf(spec)};
+      if (!spec.isFixed()) {
+        body.mass = spec.mass;
+        body.linear_velocity = spec.linear_velocity;
+        body.angular_velocity = spec.angular_velocity;
+      }
+      ids_.push_back(*world_.addBody(body));
+    }
+  }
+
+  void stepFrame() { world_.step(); }
+
+  AtRest atRest() const {
+    AtRest result;
+    const engine::BodyStore& bodies = world_.bodies();
+    for (std::size_t k = 0; k < ids_.size(); ++k) {
+      if (scene_.bodies[k].isFixed()) continue;
+      const std::size_t i = *bodies.find(ids_[k]);
+      const Vec3 w = bodies.orientation(i).conjugate() * bodies.angularVelocity(i);
+      result.kinetic_energy += 0.5 * (bodies.mass(i) * bodies.linearVelocity(i).squaredNorm() +
+                                      w.dot(bodies.principalInertia(i).cwiseProduct(w)));
+      const Vec3& p = bodies.position(i);
+      const bool outside =
+          scene_.inner_half_width > 0.0 &&
+          (std::abs(p.x()) > scene_.inner_half_width || std::abs(p.y()) > scene_.inner_half_width);
+      if (outside || p.z() < scene_.ground.height) ++result.escaped;
+      if (!bodies.awake(i)) ++result.asleep;
+    }
+    if (scene_.top_body >= 0) {
+      const Vec3& start = scene_.bodies[static_cast<std::size_t>(scene_.top_body)].position;
+      const Vec3& now =
+          bodies.position(*bodies.find(ids_[static_cast<std::size_t>(scene_.top_body)]));
+      result.top_drop = start.z() - now.z();
+      result.top_distance = (start - now).norm();
+    }
+    for (const engine::BodyContactReport& contact : world_.bodyContacts()) {
+      for (const auto& point : contact.points) {
+        ++result.contacts;
+        result.max_penetration = std::max(result.max_penetration, -point.separation);
+      }
+    }
+    return result;
+  }
+
+ private:
+  const RigidScene& scene_;
+  engine::World world_;
+  std::vector<BodyId> ids_;
+};
+
+void runScene(benchmark::State& state, const RigidScene& scene) {
+  const auto substeps = static_cast<int>(state.range(1));
+  const bool sleeping = state.range(2) != 0;
+  state.SetLabel(scene.name + (sleeping ? ", sleeping" : ", sleeping off"));
+
+  EngineWorld world(scene, substeps, sleeping);
+  const auto start = std::chrono::steady_clock::now();
+  for (int frame = 0; frame < kSettleFrames; ++frame) world.stepFrame();
+  const std::chrono::duration<double> settle = std::chrono::steady_clock::now() - start;
+  const AtRest at_rest = world.atRest();
+
+  for (auto _ : state) {
+    world.stepFrame();
+    benchmark::ClobberMemory();
+  }
+
+  const auto dynamic = std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                     [](const BodySpec& body) { return !body.isFixed(); });
+  state.counters["bodies"] = static_cast<double>(dynamic);
+  state.counters["kinetic_J"] = at_rest.kinetic_energy;
+  state.counters["max_pen_m"] = at_rest.max_penetration;
+  state.counters["contacts"] = at_rest.contacts;
+  state.counters["escaped"] = at_rest.escaped;
+  state.counters["asleep"] = at_rest.asleep;
+  if (scene.top_body >= 0) {
+    state.counters["top_drop_m"] = at_rest.top_drop;
+    state.counters["top_moved_m"] = at_rest.top_distance;
+    state.counters["stood"] = at_rest.top_distance < kStoodTolerance ? 1.0 : 0.0;
+  }
+  state.counters["settle_ms"] = 1e3 * settle.count() / kSettleFrames;
+}
+
+// Substeps 1 and 4 (the default), sleeping off and on; `kFrames` timed frames each.
+template <int kSize, int kFrames>
+void runs(benchmark::internal::Benchmark* b) {
+  for (const int sleeping : {0, 1}) {
+    for (const int substeps : {1, 4}) b->Args({kSize, substeps, sleeping});
+  }
+  b->Iterations(kFrames)->Unit(benchmark::kMillisecond);
+}
+
+void BM_RigidPyramid(benchmark::State& state) {
+  runScene(state, pyramid(static_cast<int>(state.range(0))));
+}
+void BM_RigidStack(benchmark::State& state) {
+  runScene(state, stack(static_cast<int>(state.range(0))));
+}
+void BM_RigidRandomDrop(benchmark::State& state) {
+  runScene(state, randomDrop(static_cast<int>(state.range(0))));
+}
+void BM_RigidParticleRain(benchmark::State& state) {
+  runScene(state, particleRain(static_cast<int>(state.range(0))));
+}
+
+BENCHMARK(BM_RigidPyramid)->Apply(runs<20, 600>);
+BENCHMARK(BM_RigidPyramid)->Apply(runs<100, 60>);
+BENCHMARK(BM_RigidStack)->Apply(runs<10, 600>);
+BENCHMARK(BM_RigidStack)->Apply(runs<20, 600>);
+BENCHMARK(BM_RigidRandomDrop)->Apply(runs<1000, 300>);
+BENCHMARK(BM_RigidParticleRain)->Apply(runs<kRainDefaultSpheres, 300>);
+
+}  // namespace
+}  // namespace rigid
+}  // namespace bench
+}  // namespace mass_aggregate_sim
