@@ -15,19 +15,12 @@ namespace mass_aggregate_sim {
 namespace engine {
 
 struct ContactConstraintPoint {
+  // The point from each centre of mass (fixed for the step). The rows' angular parts follow from
+  // them when a pass needs them (J_n = [-n, -(r_a x n), n, r_b x n], the tangents' likewise): a
+  // pile's rows are streamed from memory at every pass, and recomputing a cross product costs
+  // less than reading it.
   Vec3 r_a = Vec3::Zero();
   Vec3 r_b = Vec3::Zero();
-  // The normal row J = [-n, -(r_a x n), n, r_b x n]: its angular parts, and what a unit impulse
-  // along it does to each side's angular velocity, I^-1 (r x n).
-  Vec3 rn_a = Vec3::Zero();
-  Vec3 rn_b = Vec3::Zero();
-  Vec3 turn_a = Vec3::Zero();
-  Vec3 turn_b = Vec3::Zero();
-  // The same for the two friction rows along the tangents t_k: r x t_k and I^-1 (r x t_k).
-  Vec3 rt_a[2] = {Vec3::Zero(), Vec3::Zero()};
-  Vec3 rt_b[2] = {Vec3::Zero(), Vec3::Zero()};
-  Vec3 turn_t_a[2] = {Vec3::Zero(), Vec3::Zero()};
-  Vec3 turn_t_b[2] = {Vec3::Zero(), Vec3::Zero()};
   // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors;
   // `current` is that, taken once a substep (the anchors move only between substeps).
   Real separation = 0.0;

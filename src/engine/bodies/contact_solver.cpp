@@ -35,35 +35,47 @@ class Sides {
 
 // v_n = n.(v_b - v_a) + w_b.(r_b x n) - w_a.(r_a x n)
 Real normalVelocity(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s) {
-  return c.normal.dot(s.b.v - s.a.v) + s.b.w.dot(cp.rn_b) - s.a.w.dot(cp.rn_a);
+  return c.normal.dot(s.b.v - s.a.v) + s.b.w.dot(cp.r_b.cross(c.normal)) -
+         s.a.w.dot(cp.r_a.cross(c.normal));
 }
 Real normalPseudoVelocity(const ContactConstraint& c, const ContactConstraintPoint& cp,
                           const Sides& s) {
-  return c.normal.dot(s.b.pv - s.a.pv) + s.b.pw.dot(cp.rn_b) - s.a.pw.dot(cp.rn_a);
+  return c.normal.dot(s.b.pv - s.a.pv) + s.b.pw.dot(cp.r_b.cross(c.normal)) -
+         s.a.pw.dot(cp.r_a.cross(c.normal));
 }
-// An impulse j along the normal row: -j n on a, +j n on b.
-void pushNormal(const ContactConstraint& c, const ContactConstraintPoint& cp, Sides& s,
-                const Real j) {
-  s.a.v -= (c.inverse_mass_a * j) * c.normal;
-  s.a.w -= j * cp.turn_a;
-  s.b.v += (c.inverse_mass_b * j) * c.normal;
-  s.b.w += j * cp.turn_b;
+
+// Impulses j[i] along the normal rows of the points index[0..count), at once: -n sum j on a's
+// linear and I_a^-1 sum j (r_a x n) off its angular velocity (or pseudo-velocities), + on b.
+template <bool kPseudo>
+void pushNormals(const ContactConstraint& c, Sides& s, const int* index, const int count,
+                 const Real* j) {
+  Real total = 0.0;
+  Vec3 turn_a = Vec3::Zero();
+  Vec3 turn_b = Vec3::Zero();
+  for (int i = 0; i < count; ++i) {
+    const ContactConstraintPoint& cp = c.points[index[i]];
+    total += j[i];
+    turn_a += j[i] * cp.r_a.cross(c.normal);
+    turn_b += j[i] * cp.r_b.cross(c.normal);
+  }
+  Vec3& v_a = kPseudo ? s.a.pv : s.a.v;
+  Vec3& w_a = kPseudo ? s.a.pw : s.a.w;
+  Vec3& v_b = kPseudo ? s.b.pv : s.b.v;
+  Vec3& w_b = kPseudo ? s.b.pw : s.b.w;
+  v_a -= (c.inverse_mass_a * total) * c.normal;
+  w_a -= s.a.inverse_inertia * turn_a;
+  v_b += (c.inverse_mass_b * total) * c.normal;
+  w_b += s.b.inverse_inertia * turn_b;
 }
-void pushPseudo(const ContactConstraint& c, const ContactConstraintPoint& cp, Sides& s,
-                const Real j) {
-  s.a.pv -= (c.inverse_mass_a * j) * c.normal;
-  s.a.pw -= j * cp.turn_a;
-  s.b.pv += (c.inverse_mass_b * j) * c.normal;
-  s.b.pw += j * cp.turn_b;
+// One impulse j along point k's normal row.
+template <bool kPseudo>
+void pushNormal(const ContactConstraint& c, Sides& s, const int k, const Real j) {
+  pushNormals<kPseudo>(c, s, &k, 1, &j);
 }
-// Impulses j0 and j1 along the tangent rows: -(j0 t0 + j1 t1) on a, + on b.
-void pushTangents(const ContactConstraint& c, const ContactConstraintPoint& cp, Sides& s,
-                  const Real j0, const Real j1) {
-  const Vec3 p = j0 * c.tangent[0] + j1 * c.tangent[1];
-  s.a.v -= c.inverse_mass_a * p;
-  s.a.w -= j0 * cp.turn_t_a[0] + j1 * cp.turn_t_a[1];
-  s.b.v += c.inverse_mass_b * p;
-  s.b.w += j0 * cp.turn_t_b[0] + j1 * cp.turn_t_b[1];
+// An impulse p at point cp's anchors: -p on a, +p on b.
+void pushAt(const ContactConstraintPoint& cp, Sides& s, const Vec3& p) {
+  s.a.applyImpulse(cp.r_a, -p);
+  s.b.applyImpulse(cp.r_b, p);
 }
 
 // The separation of point cp now: as prepared, moved on by the anchors' displacements since.
@@ -75,14 +87,24 @@ Real separationNow(const ContactConstraint& c, const ContactConstraintPoint& cp,
 bool closes(const Real vn, const Real s, const Real h) { return s > 0.0 ? vn < -s / h : vn < 0.0; }
 
 // K of the points index[0..count): K_ij = m_a + m_b + (r_ai x n).I_a^-1 (r_aj x n) + (b's).
-SmallBlock coupledMass(const ContactConstraint& c, const int* index, const int count) {
+SmallBlock coupledMass(const ContactConstraint& c, const SolverBody& a, const SolverBody& b,
+                       const int* index, const int count) {
+  Vec3 rn_a[Manifold::kMaxPoints];
+  Vec3 rn_b[Manifold::kMaxPoints];
+  Vec3 turn_a[Manifold::kMaxPoints];
+  Vec3 turn_b[Manifold::kMaxPoints];
+  for (int i = 0; i < count; ++i) {
+    const ContactConstraintPoint& cp = c.points[index[i]];
+    rn_a[i] = cp.r_a.cross(c.normal);
+    rn_b[i] = cp.r_b.cross(c.normal);
+    turn_a[i] = a.inverse_inertia * rn_a[i];
+    turn_b[i] = b.inverse_inertia * rn_b[i];
+  }
   SmallBlock k(count, count);
   for (int i = 0; i < count; ++i) {
-    const ContactConstraintPoint& pi = c.points[index[i]];
     for (int j = 0; j < count; ++j) {
-      const ContactConstraintPoint& pj = c.points[index[j]];
       k(i, j) =
-          c.inverse_mass_a + c.inverse_mass_b + pi.rn_a.dot(pj.turn_a) + pi.rn_b.dot(pj.turn_b);
+          c.inverse_mass_a + c.inverse_mass_b + rn_a[i].dot(turn_a[j]) + rn_b[i].dot(turn_b[j]);
     }
   }
   return k;
@@ -154,11 +176,11 @@ SmallBlock pseudoInverse(const SmallBlock& k) {
 // Rows of contact c along its normal, solved at once: the points in index[0..count), each with
 // its closing speed (normal velocity plus bias) from closing(k) and its accumulated impulse in
 // totals[k]; j = -K^-1 closing (the precomputed block when every point takes part), applied by
-// apply(k, j) when every total stays >= 0; else a point whose total would pull leaves and the
-// rest are solved again. False when the set ran down to one point (the caller goes point by
-// point).
+// apply(index, count, j) when every total stays >= 0; else a point whose total would pull leaves
+// and the rest are solved again. False when the set ran down to one point (the caller goes point
+// by point).
 template <typename Closing, typename Apply>
-bool solveTogether(const ContactConstraint& c, int* index, int count, Real* totals,
+bool solveTogether(const ContactConstraint& c, const Sides& s, int* index, int count, Real* totals,
                    Closing&& closing, Apply&& apply) {
   for (int attempt = 0; attempt < Manifold::kMaxPoints && count > 1; ++attempt) {
     PointVector shared;
@@ -169,15 +191,17 @@ bool solveTogether(const ContactConstraint& c, int* index, int count, Real* tota
     } else {
       SmallVector speed(count);
       for (int i = 0; i < count; ++i) speed[i] = closing(index[i]);
-      shared.head(count) = pseudoInverse(coupledMass(c, index, count)) * speed;
+      shared.head(count) = pseudoInverse(coupledMass(c, s.a, s.b, index, count)) * speed;
     }
     int kept = 0;
     for (int i = 0; i < count; ++i) kept += totals[index[i]] - shared[i] >= 0.0 ? 1 : 0;
     if (kept == count) {
+      Real impulses[Manifold::kMaxPoints];
       for (int i = 0; i < count; ++i) {
         totals[index[i]] -= shared[i];
-        apply(index[i], -shared[i]);
+        impulses[i] = -shared[i];
       }
+      apply(index, count, impulses);
       return true;
     }
     kept = 0;
@@ -216,10 +240,12 @@ void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
   const Vec3 v_a = s.a.v;
   const Vec3 v_b = s.b.v;
   const auto closing = [&](const int k) { return normalVelocity(c, c.points[k], s) - target[k]; };
-  const auto push = [&](const int k, const Real j) { pushNormal(c, c.points[k], s, j); };
-  if (!solveTogether(c, index, count, totals, closing, push) && count == 1) {
+  const auto push = [&](const int* points, const int n, const Real* j) {
+    pushNormals<false>(c, s, points, n, j);
+  };
+  if (!solveTogether(c, s, index, count, totals, closing, push) && count == 1) {
     const int k = index[0];
-    push(k, std::max(-c.points[k].normal_mass * closing(k), 0.0));
+    pushNormal<false>(c, s, k, std::max(-c.points[k].normal_mass * closing(k), 0.0));
   }
   // The bodies fly on to the touch before turning back. Over the substep, from v0 = v - a h,
   // they move v0 touch + a touch^2 / 2 + (v0 + a touch + dv)(h - touch) + a (h - touch)^2 / 2
@@ -262,16 +288,18 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   const auto closing = [&](const int k) {
     return normalVelocity(c, c.points[k], s) + std::max(separation[k], 0.0) * inverse_h;
   };
-  const auto push = [&](const int k, const Real j) {
-    c.points[k].normal_impulse += j;
-    pushNormal(c, c.points[k], s, j);
+  const auto push = [&](const int* points, const int n, const Real* j) {
+    for (int i = 0; i < n; ++i) c.points[points[i]].normal_impulse += j[i];
+    pushNormals<false>(c, s, points, n, j);
   };
-  if (!solveTogether(c, index, count, totals, closing, push)) {
+  if (!solveTogether(c, s, index, count, totals, closing, push)) {
     for (int k = 0; k < c.count; ++k) {
       ContactConstraintPoint& cp = c.points[k];
       Real total = std::max(cp.normal_impulse - cp.normal_mass * closing(k), 0.0);
       if (!pass.use_bias && separation[k] > pass.slop) total = std::min(total, cp.normal_impulse);
-      push(k, total - cp.normal_impulse);
+      const Real j = total - cp.normal_impulse;
+      cp.normal_impulse = total;
+      pushNormal<false>(c, s, k, j);
     }
   }
   if (!pass.use_bias) return;
@@ -289,32 +317,29 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   const auto pseudo_closing = [&](const int k) {
     return normalPseudoVelocity(c, c.points[k], s) + bias[k];
   };
-  const auto pseudo_push = [&](const int k, const Real j) { pushPseudo(c, c.points[k], s, j); };
-  if (count > 0 && !solveTogether(c, index, count, pseudo_totals, pseudo_closing, pseudo_push)) {
+  const auto pseudo_push = [&](const int* points, const int n, const Real* j) {
+    pushNormals<true>(c, s, points, n, j);
+  };
+  if (count > 0 && !solveTogether(c, s, index, count, pseudo_totals, pseudo_closing, pseudo_push)) {
     for (int i = 0; i < count; ++i) {
       const int k = index[i];
       const Real total =
           std::max(pseudo_totals[k] - c.points[k].normal_mass * pseudo_closing(k), 0.0);
-      pseudo_push(k, total - pseudo_totals[k]);
+      pushNormal<true>(c, s, k, total - pseudo_totals[k]);
       pseudo_totals[k] = total;
     }
   }
-}
-
-// The sliding speed of point cp along tangent k: t.(v_b - v_a) + w_b.(r_b x t) - w_a.(r_a x t).
-Real tangentVelocity(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s,
-                     const int k) {
-  return c.tangent[k].dot(s.b.v - s.a.v) + s.b.w.dot(cp.rt_b[k]) - s.a.w.dot(cp.rt_a[k]);
 }
 
 // Coulomb's cone at each point: the tangential impulse (both directions together) at most mu j_n.
 void solveFriction(ContactConstraint& c, Sides& s) {
   for (int k = 0; k < c.count; ++k) {
     ContactConstraintPoint& cp = c.points[k];
+    const Vec3 dv = s.b.velocityAt(cp.r_b) - s.a.velocityAt(cp.r_a);
     const Real old0 = cp.tangent_impulse[0];
     const Real old1 = cp.tangent_impulse[1];
-    Real t0 = old0 - cp.tangent_mass[0] * tangentVelocity(c, cp, s, 0);
-    Real t1 = old1 - cp.tangent_mass[1] * tangentVelocity(c, cp, s, 1);
+    Real t0 = old0 - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
+    Real t1 = old1 - cp.tangent_mass[1] * dv.dot(c.tangent[1]);
     const Real limit = c.friction * cp.normal_impulse;
     const Real length_squared = t0 * t0 + t1 * t1;
     if (length_squared > limit * limit) {
@@ -324,7 +349,7 @@ void solveFriction(ContactConstraint& c, Sides& s) {
     }
     cp.tangent_impulse[0] = t0;
     cp.tangent_impulse[1] = t1;
-    pushTangents(c, cp, s, t0 - old0, t1 - old1);
+    pushAt(cp, s, (t0 - old0) * c.tangent[0] + (t1 - old1) * c.tangent[1]);
   }
 }
 
@@ -363,16 +388,6 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
     ContactConstraintPoint& cp = c.points[k];
     cp.r_a = mp.point - sides.center_a;
     cp.r_b = mp.point - sides.center_b;
-    cp.rn_a = cp.r_a.cross(c.normal);
-    cp.rn_b = cp.r_b.cross(c.normal);
-    cp.turn_a = a.inverse_inertia * cp.rn_a;
-    cp.turn_b = b.inverse_inertia * cp.rn_b;
-    for (int t = 0; t < 2; ++t) {
-      cp.rt_a[t] = cp.r_a.cross(c.tangent[t]);
-      cp.rt_b[t] = cp.r_b.cross(c.tangent[t]);
-      cp.turn_t_a[t] = a.inverse_inertia * cp.rt_a[t];
-      cp.turn_t_b[t] = b.inverse_inertia * cp.rt_b[t];
-    }
     cp.separation = mp.separation;
     cp.normal_mass = effectiveMass(a, cp.r_a, b, cp.r_b, c.normal);
     cp.tangent_mass[0] = effectiveMass(a, cp.r_a, b, cp.r_b, c.tangent[0]);
@@ -383,7 +398,7 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   }
   if (c.count > 1) {
     const int all[Manifold::kMaxPoints] = {0, 1, 2, 3};
-    const auto mass = coupledMass(c, all, c.count);
+    const auto mass = coupledMass(c, a, b, all, c.count);
     auto kept_mass = inverted.mass.topLeftCorner(c.count, c.count);
     // A block a thousandth off is still a good solve for a pass that is repeated and warm
     // started; inverting K again whenever a resting body turns by rounding cost a fifth of a
@@ -422,11 +437,23 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
       }
     }
     if (c.impact) continue;
+    // The points' impulses P_k together: -sum P on a's momentum, -sum r_a x P on its angular
+    // momentum, + on b.
+    Vec3 linear = Vec3::Zero();
+    Vec3 angular_a = Vec3::Zero();
+    Vec3 angular_b = Vec3::Zero();
     for (int k = 0; k < c.count; ++k) {
       const ContactConstraintPoint& cp = c.points[k];
-      pushNormal(c, cp, s, cp.normal_impulse);
-      pushTangents(c, cp, s, cp.tangent_impulse[0], cp.tangent_impulse[1]);
+      const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
+                     cp.tangent_impulse[1] * c.tangent[1];
+      linear += p;
+      angular_a += cp.r_a.cross(p);
+      angular_b += cp.r_b.cross(p);
     }
+    s.a.v -= c.inverse_mass_a * linear;
+    s.a.w -= s.a.inverse_inertia * angular_a;
+    s.b.v += c.inverse_mass_b * linear;
+    s.b.w += s.b.inverse_inertia * angular_b;
   }
 }
 
