@@ -26,7 +26,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=${REPO_DIR}/test/sanitizers/lsan.supp:print_suppressions=0"
 # Long physics runs whose outcome the Release stage checks and whose code every shorter test
 # already runs under the sanitizers (together 7 of the 9 minutes the suite took here).
-long_runs="Stacks.PyramidOfAHundred*:DenseDrop.*:Extremes.TimeStepsFromAMicrosecondToATenthOfASecond"
+long_runs="Stacks.PyramidOfAHundred*:DenseDrop.*:RandomPile.*"
+long_runs+=":Extremes.TimeStepsFromAMicrosecondToATenthOfASecond"
 status=0
 for binary in "${san_ws}"/devel/lib/mass_aggregate_sim/*_tests; do
   [ -x "${binary}" ] || continue

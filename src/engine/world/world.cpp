@@ -430,7 +430,7 @@ std::uint64_t World::stateHash() const {
         hasher.add(c.impulses[k].tangent[1]);
       }
       // The coupled masses a contact keeps inverted (their inverses follow from them) are
-      // refreshed only when they change by more than a thousandth: state that steers the solve.
+      // refreshed only when they change beyond rounding: state that steers the solve.
       for (const BodyContact::InvertedMass* kept : {&c.coupled, &c.upper_alone}) {
         for (int i = 0; i < c.manifold.count; ++i) {
           for (int j = 0; j < c.manifold.count; ++j) hasher.add(kept->mass(i, j));

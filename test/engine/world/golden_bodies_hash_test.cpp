@@ -14,7 +14,7 @@ namespace {
 
 using namespace test_bodies;
 
-constexpr std::uint64_t kBodiesGoldenHash = 0x13b0cf44c0bae6ecull;
+constexpr std::uint64_t kBodiesGoldenHash = 0xb60b1090ec2bd17bull;
 constexpr int kBodiesGoldenSteps = 600;
 
 // A stack of three boxes (asleep by the end), a hinged rod swinging, a chain of three spheres on
