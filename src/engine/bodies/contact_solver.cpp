@@ -335,6 +335,10 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
 void solveFriction(ContactConstraint& c, Sides& s) {
   for (int k = 0; k < c.count; ++k) {
     ContactConstraintPoint& cp = c.points[k];
+    // A point that carries no load and holds no friction stays so: the cone is a point.
+    if (cp.normal_impulse == 0.0 && cp.tangent_impulse[0] == 0.0 && cp.tangent_impulse[1] == 0.0) {
+      continue;
+    }
     const Vec3 dv = s.b.velocityAt(cp.r_b) - s.a.velocityAt(cp.r_a);
     const Real old0 = cp.tangent_impulse[0];
     const Real old1 = cp.tangent_impulse[1];
