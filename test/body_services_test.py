@@ -10,6 +10,7 @@ import time
 import unittest
 
 import rospy
+from diagnostic_msgs.msg import DiagnosticArray
 import rostest
 import tf2_ros
 from geometry_msgs.msg import Point, TransformStamped, Vector3
@@ -333,6 +334,30 @@ class BodyServicesTest(unittest.TestCase):
         stats = self.sim.stats()
         self.assertGreaterEqual(stats.body_contacts, 1)
         self.assertEqual(stats.islands, 2)  # the load (the anvil is fixed) and the drifter
+
+    def test_sleeping_bodies_are_counted_on_stats_and_diagnostics(self):
+        arrays = Latest('/diagnostics', DiagnosticArray)
+        self.spawn(body('sleeper', x=(10.0, 0.0, 1.0), mass=2.0))
+        # 1.5 s at 100 Hz: it lands on the anvil and is slow for more than 0.5 s.
+        self.assertTrue(self.sim.step(150).success)
+        stats = self.sim.stats()
+        self.assertEqual(stats.bodies, 3)
+        self.assertEqual(stats.sleeping_bodies, 1)
+        # The first Capacity status made from a frame after the steps (it is updated once a
+        # diagnostic period from the latest frame).
+        capacity = None
+        deadline = time.time() + 10.0
+        while time.time() < deadline:
+            for status in arrays.fresh(count=1).status:
+                if status.name.endswith('Capacity'):
+                    capacity = {kv.key: kv.value for kv in status.values}
+            if capacity is not None and capacity.get('bodies') == '3':
+                break
+        arrays.sub.unregister()
+        self.assertIsNotNone(capacity, 'no Capacity status on /diagnostics')
+        self.assertEqual(capacity['bodies'], '3')
+        self.assertEqual(capacity['sleeping bodies'], '1')
+        self.assertEqual(capacity['islands'], '2')  # the sleeper (the anvil is fixed), the drifter
 
     def test_queries_return_bodies_and_particles(self):
         ray = self.sim.raycast(RaycastRequest(origin=point(10.0, 0.0, 5.0),

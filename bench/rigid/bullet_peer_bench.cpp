@@ -8,9 +8,9 @@
 // n + 1 steps in a frame. sleeping = 0 turns deactivation off for every body (the timing runs);
 // 1 keeps Bullet's default (a body at rest for 2 s sleeps).
 //
-// Each case builds its scene and simulates 10 s untimed, records the at-rest quality then
-// (counters), and times a fixed number of further frames: Time and CPU are per frame (1/60 s,
-// all its substeps), one thread.
+// Each case builds its scene and simulates 10 s untimed (their mean cost per frame is settle_ms),
+// records the at-rest quality then (counters, rigid_report.h), and times a fixed number of further
+// frames: Time and CPU are per frame (1/60 s, all its substeps), one thread.
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -24,6 +24,7 @@
 #include <tuple>
 #include <vector>
 
+#include "rigid_report.h"
 #include "rigid_scenes.h"
 
 namespace mass_aggregate_sim {
@@ -33,7 +34,6 @@ namespace {
 
 constexpr double kFrameSeconds = 1.0 / 60.0;
 constexpr int kSolverIterations = 10;
-constexpr int kSettleFrames = 600;  // 10 s
 
 btVector3 toBullet(const Eigen::Vector3d& v) {
   return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
@@ -52,16 +52,6 @@ bool hasRestitution(const RigidScene& scene) {
          std::any_of(scene.bodies.begin(), scene.bodies.end(),
                      [](const BodySpec& body) { return body.restitution != 0.0; });
 }
-
-struct AtRest {
-  double kinetic_energy = 0.0;
-  double top_drop = 0.0;      // start height minus height now, of the scene's top body
-  double top_distance = 0.0;  // how far the top body is from where it started
-  double max_penetration = 0.0;
-  int contacts = 0;
-  int escaped = 0;
-  int asleep = 0;
-};
 
 class BulletWorld {
  public:
@@ -198,32 +188,19 @@ void runScene(benchmark::State& state, const RigidScene& scene) {
   state.SetLabel(std::string(btIsDoublePrecision() ? "double" : "float") + ", " + scene.name +
                  (sleeping ? ", default deactivation" : ", deactivation off"));
 
-  const auto start = std::chrono::steady_clock::now();
   BulletWorld world(scene, substeps, sleeping);
+  const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < kSettleFrames; ++frame) world.stepFrame();
+  const std::chrono::duration<double> settle = std::chrono::steady_clock::now() - start;
   const AtRest at_rest = world.atRest();
-  const std::chrono::duration<double> setup = std::chrono::steady_clock::now() - start;
 
   for (auto _ : state) {
     world.stepFrame();
     benchmark::ClobberMemory();
   }
 
-  const auto dynamic = std::count_if(scene.bodies.begin(), scene.bodies.end(),
-                                     [](const BodySpec& body) { return !body.isFixed(); });
-  state.counters["bodies"] = static_cast<double>(dynamic);
   state.counters["double_prec"] = btIsDoublePrecision() ? 1.0 : 0.0;
-  state.counters["kinetic_J"] = at_rest.kinetic_energy;
-  state.counters["max_pen_m"] = at_rest.max_penetration;
-  state.counters["contacts"] = at_rest.contacts;
-  state.counters["escaped"] = at_rest.escaped;
-  state.counters["asleep"] = at_rest.asleep;
-  if (scene.top_body >= 0) {
-    state.counters["top_drop_m"] = at_rest.top_drop;
-    state.counters["top_moved_m"] = at_rest.top_distance;
-    state.counters["stood"] = at_rest.top_distance < kStoodTolerance ? 1.0 : 0.0;
-  }
-  state.counters["settle_s"] = setup.count();
+  reportAtRest(state, scene, at_rest, settle.count());
 }
 
 // Substeps 1 and 4, deactivation off and Bullet's default; `kFrames` timed frames each.

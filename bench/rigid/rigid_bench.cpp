@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
+#include "rigid_report.h"
 #include "rigid_scenes.h"
 
 namespace mass_aggregate_sim {
@@ -31,8 +32,6 @@ using engine::BodyId;
 using engine::Real;
 using engine::Vec3;
 
-constexpr int kSettleFrames = 600;  // 10 s
-
 engine::BodyShapeSpec shapeOf(const BodySpec& spec) {
   engine::BodyShapeSpec shape;
   if (spec.shape == ShapeType::kSphere) {
@@ -43,16 +42,6 @@ engine::BodyShapeSpec shapeOf(const BodySpec& spec) {
   shape.material = engine::Material{spec.restitution, spec.friction};
   return shape;
 }
-
-struct AtRest {
-  double kinetic_energy = 0.0;
-  double top_drop = 0.0;
-  double top_distance = 0.0;
-  double max_penetration = 0.0;
-  int contacts = 0;
-  int escaped = 0;
-  int asleep = 0;
-};
 
 class EngineWorld {
  public:
@@ -146,20 +135,7 @@ void runScene(benchmark::State& state, const RigidScene& scene) {
     benchmark::ClobberMemory();
   }
 
-  const auto dynamic = std::count_if(scene.bodies.begin(), scene.bodies.end(),
-                                     [](const BodySpec& body) { return !body.isFixed(); });
-  state.counters["bodies"] = static_cast<double>(dynamic);
-  state.counters["kinetic_J"] = at_rest.kinetic_energy;
-  state.counters["max_pen_m"] = at_rest.max_penetration;
-  state.counters["contacts"] = at_rest.contacts;
-  state.counters["escaped"] = at_rest.escaped;
-  state.counters["asleep"] = at_rest.asleep;
-  if (scene.top_body >= 0) {
-    state.counters["top_drop_m"] = at_rest.top_drop;
-    state.counters["top_moved_m"] = at_rest.top_distance;
-    state.counters["stood"] = at_rest.top_distance < kStoodTolerance ? 1.0 : 0.0;
-  }
-  state.counters["settle_ms"] = 1e3 * settle.count() / kSettleFrames;
+  reportAtRest(state, scene, at_rest, settle.count());
 }
 
 // Substeps 1 and 4 (the default) of 2 iterations, sleeping off and on; `kFrames` timed frames

@@ -72,11 +72,6 @@ template <bool kPseudo>
 void pushNormal(const ContactConstraint& c, Sides& s, const int k, const Real j) {
   pushNormals<kPseudo>(c, s, &k, 1, &j);
 }
-// An impulse p at point cp's anchors: -p on a, +p on b.
-void pushAt(const ContactConstraintPoint& cp, Sides& s, const Vec3& p) {
-  s.a.applyImpulse(cp.r_a, -p);
-  s.b.applyImpulse(cp.r_b, p);
-}
 
 // The separation of point cp now: as prepared, moved on by the anchors' displacements since.
 Real separationNow(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s) {
@@ -140,7 +135,8 @@ SmallBlock pseudoInverseOfTwo(const SmallBlock& k) {
   const Real b = k(0, 1);
   const Real c = k(1, 1);
   const Real m = 0.5 * (a + c);
-  const Real r = std::hypot(0.5 * (a - c), b);
+  const Real half_gap = 0.5 * (a - c);
+  const Real r = std::sqrt(half_gap * half_gap + b * b);
   const Real large = m + r;
   const Real small = m - r;
   SmallBlock inverse = SmallBlock::Zero(2, 2);
@@ -171,6 +167,63 @@ SmallBlock pseudoInverse(const SmallBlock& k) {
     default:
       return pseudoInverseOf<4>(k);
   }
+}
+
+// K^+ of a manifold's four points through the space their rows span. They share the normal n, so
+// a point's angular parts differ from the mean point's only by where it lies in the contact plane
+// (d_i = x_i - mean, alpha_i = d_i.t0, beta_i = d_i.t1; t0 x n = -t1, t1 x n = t0):
+//   r_i x n = r_mean x n - alpha_i t1 + beta_i t0   (for a and for b)
+// so K = A D A^T with A_i = [1, alpha_i, beta_i] and D the 3x3 coupled mass of the mean point's
+// row and the two turns, rank 3 at most. With A^T A = L L^T, Q = A L^-T has orthonormal columns
+// and K = Q S Q^T, S = L^T D L: K's eigenvalues other than its structural zero are S's, and
+// K^+ = Q S^+ Q^T with the same floor as pseudoInverseOf. False when the points are nearly on a
+// line (A^T A near singular): the caller inverts K itself.
+bool pseudoInverseInPlane(const ContactConstraint& c, const SolverBody& a, const SolverBody& b,
+                          SmallBlock& inverse) {
+  const Vec3& n = c.normal;
+  const Vec3& t0 = c.tangent[0];
+  const Vec3& t1 = c.tangent[1];
+  Vec3 mean_a = Vec3::Zero();
+  Vec3 mean_b = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    mean_a += c.points[k].r_a;
+    mean_b += c.points[k].r_b;
+  }
+  mean_a *= 0.25;
+  mean_b *= 0.25;
+  Eigen::Matrix<Real, 4, 3> span;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 d = c.points[k].r_a - mean_a;
+    span.row(k) << 1.0, d.dot(t0), d.dot(t1);
+  }
+  const Vec3 turn_a[3] = {mean_a.cross(n), -t1, t0};
+  const Vec3 turn_b[3] = {mean_b.cross(n), -t1, t0};
+  Mat3 d;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      d(i, j) = turn_a[i].dot(a.inverse_inertia * turn_a[j]) +
+                turn_b[i].dot(b.inverse_inertia * turn_b[j]);
+    }
+  }
+  d(0, 0) += c.inverse_mass_a + c.inverse_mass_b;
+  const Mat3 gram = span.transpose() * span;
+  const Eigen::LLT<Mat3> llt(gram);
+  const Mat3 l = llt.matrixL();
+  if (llt.info() != Eigen::Success || l.diagonal().minCoeff() <= 1e-6 * l.diagonal().maxCoeff()) {
+    return false;
+  }
+  const Mat3 l_inverse = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
+  const Eigen::Matrix<Real, 4, 3> q = span * l_inverse.transpose();
+  const Mat3 inner = l.transpose() * d * l;
+  Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+  eigen.computeDirect(inner);
+  const Vec3& values = eigen.eigenvalues();
+  const Real floor = 1e-6 * values.cwiseAbs().maxCoeff();
+  Vec3 inverted;
+  for (int i = 0; i < 3; ++i) inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
+  const Eigen::Matrix<Real, 4, 3> qv = q * eigen.eigenvectors();
+  inverse = qv * inverted.asDiagonal() * qv.transpose();
+  return true;
 }
 
 // Rows of contact c along its normal, solved at once: the points in index[0..count), each with
@@ -333,13 +386,21 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
 
 // Coulomb's cone at each point: the tangential impulse (both directions together) at most mu j_n.
 void solveFriction(ContactConstraint& c, Sides& s) {
+  // The two sides' velocities in locals for the manifold's points (the sides are two references
+  // the compiler cannot tell apart, so every write through one would reload the other).
+  Vec3 v_a = s.a.v;
+  Vec3 w_a = s.a.w;
+  Vec3 v_b = s.b.v;
+  Vec3 w_b = s.b.w;
+  const Mat3& inertia_a = s.a.inverse_inertia;
+  const Mat3& inertia_b = s.b.inverse_inertia;
   for (int k = 0; k < c.count; ++k) {
     ContactConstraintPoint& cp = c.points[k];
     // A point that carries no load and holds no friction stays so: the cone is a point.
     if (cp.normal_impulse == 0.0 && cp.tangent_impulse[0] == 0.0 && cp.tangent_impulse[1] == 0.0) {
       continue;
     }
-    const Vec3 dv = s.b.velocityAt(cp.r_b) - s.a.velocityAt(cp.r_a);
+    const Vec3 dv = (v_b + w_b.cross(cp.r_b)) - (v_a + w_a.cross(cp.r_a));
     const Real old0 = cp.tangent_impulse[0];
     const Real old1 = cp.tangent_impulse[1];
     Real t0 = old0 - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
@@ -353,8 +414,17 @@ void solveFriction(ContactConstraint& c, Sides& s) {
     }
     cp.tangent_impulse[0] = t0;
     cp.tangent_impulse[1] = t1;
-    pushAt(cp, s, (t0 - old0) * c.tangent[0] + (t1 - old1) * c.tangent[1]);
+    // The impulse p at the anchors: -p on a, +p on b (SolverBody::applyImpulse).
+    const Vec3 p = (t0 - old0) * c.tangent[0] + (t1 - old1) * c.tangent[1];
+    v_a -= c.inverse_mass_a * p;
+    w_a -= inertia_a * cp.r_a.cross(p);
+    v_b += c.inverse_mass_b * p;
+    w_b += inertia_b * cp.r_b.cross(p);
   }
+  s.a.v = v_a;
+  s.a.w = w_a;
+  s.b.v = v_b;
+  s.b.w = w_b;
 }
 
 }  // namespace
@@ -410,7 +480,9 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
     constexpr Real kRefresh = 1e-12;
     if ((mass - kept_mass).cwiseAbs().maxCoeff() > kRefresh * mass.cwiseAbs().maxCoeff()) {
       kept_mass = mass;
-      inverted.inverse.topLeftCorner(c.count, c.count) = pseudoInverse(mass);
+      SmallBlock inverse;
+      if (c.count < 4 || !pseudoInverseInPlane(c, a, b, inverse)) inverse = pseudoInverse(mass);
+      inverted.inverse.topLeftCorner(c.count, c.count) = inverse;
     }
     c.normal_block.topLeftCorner(c.count, c.count) =
         inverted.inverse.topLeftCorner(c.count, c.count);
