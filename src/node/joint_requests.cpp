@@ -102,8 +102,18 @@ class FieldSetter {
   bool every_field_;
 };
 
-Result<engine::JointEnd> resolveEnd(const engine::World& world, const JointEndRef& ref,
-                                    const Vec3& anchor, const char* field) {
+template <typename Kind>
+bool containsJoint(const std::vector<Kind>& joints, const JointId id) {
+  for (const Kind& joint : joints) {
+    if (joint.id == id) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Result<engine::JointEnd> resolveJointEnd(const engine::World& world, const JointEndRef& ref,
+                                         const Vec3& anchor, const char* field) {
   const std::string where = std::string(field) + ": ";
   switch (ref.kind) {
     case JointEndRef::Kind::kWorld: {
@@ -127,16 +137,6 @@ Result<engine::JointEnd> resolveEnd(const engine::World& world, const JointEndRe
   }
   return Status::error(where + "unknown kind of end");
 }
-
-template <typename Kind>
-bool containsJoint(const std::vector<Kind>& joints, const JointId id) {
-  for (const Kind& joint : joints) {
-    if (joint.id == id) return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 std::optional<std::vector<JointField>> jointFields(const std::string& type) {
   std::optional<std::vector<JointField>> out;
@@ -174,12 +174,12 @@ Result<JointId> addJoint(engine::World& world, const JointRequest& request) {
       added = setter.status;
       return;
     }
-    const auto a = resolveEnd(world, request.a, request.anchor_a, "a");
+    const auto a = resolveJointEnd(world, request.a, request.anchor_a, "a");
     if (!a) {
       added = a.status();
       return;
     }
-    const auto b = resolveEnd(world, request.b, request.anchor_b, "b");
+    const auto b = resolveJointEnd(world, request.b, request.anchor_b, "b");
     if (!b) {
       added = b.status();
       return;

@@ -163,7 +163,7 @@ bool isLink(const engine::World& world, const GeneratorId id) {
     if constexpr (engine::ForceKind<Kind>::kDrawn) found = found || containsId(kind, id);
   });
   world.links().forEach([&](const auto& kind) { found = found || containsId(kind, id); });
-  return found;
+  return found || containsId(world.bodyGenerators().of<engine::PointSpring>(), id);
 }
 
 }  // namespace node

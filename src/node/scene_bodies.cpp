@@ -265,5 +265,66 @@ void readJoints(XmlRpcValue& list, const std::string& key, engine::World& world,
   }
 }
 
+namespace {
+
+// Where an end sits when the scene does not say: a body's origin, the particle; the world needs a
+// point.
+Vec3 defaultAnchor(const engine::World& world, const JointEndRef& end, const std::string& key) {
+  switch (end.kind) {
+    case JointEndRef::Kind::kBody:
+      return world.bodies()
+          .pose(*world.bodies().find(*world.bodies().findByName(end.name)))
+          .position;
+    case JointEndRef::Kind::kParticle:
+      return world.particles().positions().col(static_cast<Eigen::Index>(
+          *world.particles().find(*world.particles().findByName(end.name))));
+    case JointEndRef::Kind::kWorld:
+      break;
+  }
+  throw ParamError(key, "is required for an end in the world");
+}
+
+}  // namespace
+
+void readPointSpring(XmlRpcValue& s, const std::string& k, engine::World& world) {
+  checkKeys(s, k, {"type", "a", "b", "anchor", "anchor_b", "stiffness", "rest_length", "damping"});
+  const std::string type = stringOr(s, k, "type", "");
+  const std::string a = stringOr(s, k, "a", "");
+  if (a.empty()) throw ParamError(k + ".a", "is required (a body or particle name)");
+  const JointEndRef end_a = endNamed(world, a, k + ".a");
+  const JointEndRef end_b = endNamed(world, stringOr(s, k, "b", ""), k + ".b");
+  const Vec3 anchor_a = has(s, "anchor") ? readVec3(s["anchor"], k + ".anchor")
+                                         : defaultAnchor(world, end_a, k + ".anchor");
+  const Vec3 anchor_b = has(s, "anchor_b") ? readVec3(s["anchor_b"], k + ".anchor_b")
+                                           : defaultAnchor(world, end_b, k + ".anchor_b");
+  const auto resolved_a = resolveJointEnd(world, end_a, anchor_a, "a");
+  if (!resolved_a) throw ParamError(k, resolved_a.message());
+  const auto resolved_b = resolveJointEnd(world, end_b, anchor_b, "b");
+  if (!resolved_b) throw ParamError(k, resolved_b.message());
+  engine::PointSpring spring =
+      engine::PointSpring::between(*resolved_a, *resolved_b, realOr(s, k, "stiffness", 0.0),
+                                   realOr(s, k, "rest_length", -1.0), realOr(s, k, "damping", 0.0));
+  if (has(s, "rest_length") && spring.rest_length < 0.0) {
+    throw ParamError(k + ".rest_length", "must be >= 0 (left out: the distance)");
+  }
+  spring.pull_only = type == "bungee";
+  const auto added = world.addBodyGenerator(spring);
+  if (!added) throw ParamError(k, added.message());
+}
+
+std::vector<engine::BodyId> readBodyTargets(XmlRpcValue& s, const std::string& k,
+                                            const engine::World& world) {
+  XmlRpcValue& names = s["bodies"];
+  requireArray(names, k + ".bodies");
+  std::vector<engine::BodyId> ids;
+  for (int j = 0; j < names.size(); ++j) {
+    const std::string name = readString(names[j], indexed(k + ".bodies", j));
+    const auto id = world.bodies().findByName(name);
+    if (!id) throw ParamError(indexed(k + ".bodies", j), "no body named " + quoteInput(name));
+    ids.push_back(*id);
+  }
+  return ids;
+}
+
 }  // namespace node
 }  // namespace mass_aggregate_sim

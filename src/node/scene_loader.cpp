@@ -72,7 +72,6 @@ class SceneBuilder {
     if (has(scene, "lines")) readLines(scene["lines"], key + ".lines");
     if (has(scene, "blocks")) readBlocks(scene["blocks"], key + ".blocks");
     if (has(scene, "links")) readLinks(scene["links"], key + ".links");
-    if (has(scene, "forces")) readForces(scene["forces"], key + ".forces");
     const BodyLimits body_limits{overrides_.max_bodies, overrides_.max_joints,
                                  overrides_.world_frame};
     if (has(scene, "body_solver"))
@@ -81,6 +80,8 @@ class SceneBuilder {
     if (has(scene, "joints")) {
       readJoints(scene["joints"], key + ".joints", world_, body_limits, loaded.joint_names);
     }
+    // After the bodies: a force may act on them.
+    if (has(scene, "forces")) readForces(scene["forces"], key + ".forces");
     loaded.world = world_;
     return loaded;
   }
@@ -322,7 +323,8 @@ class SceneBuilder {
   }
 
   void checkLinkCount(const std::string& key) const {
-    if (world_.generators().size() + world_.links().size() >= overrides_.max_links) {
+    if (world_.generators().size() + world_.links().size() + world_.bodyGenerators().size() >=
+        overrides_.max_links) {
       throw ParamError(key, "more than ~max_links (" + std::to_string(overrides_.max_links) +
                                 ") links and force generators");
     }
@@ -382,7 +384,38 @@ class SceneBuilder {
       const std::string k = indexed(key, i);
       XmlRpcValue& force = list[i];
       const std::string type = stringOr(force, k, "type", "");
-      if (type == "drag") {
+      if (type == "spring" || type == "bungee") {
+        checkLinkCount(k);
+        readPointSpring(force, k, world_);
+      } else if (type == "drag" && has(force, "bodies")) {
+        checkKeys(force, k, {"type", "bodies", "k1", "k2", "angular"});
+        engine::BodyDrag drag;
+        drag.k1 = realOr(force, k, "k1", 0.0);
+        drag.k2 = realOr(force, k, "k2", 0.0);
+        drag.angular = realOr(force, k, "angular", 0.0);
+        for (const auto id : readBodyTargets(force, k, world_)) {
+          checkLinkCount(k);
+          drag.body = id;
+          const auto added = world_.addBodyGenerator(drag);
+          if (!added) throw ParamError(k, added.message());
+        }
+      } else if (type == "buoyancy" && has(force, "bodies")) {
+        checkKeys(
+            force, k,
+            {"type", "bodies", "max_depth", "volume", "liquid_density", "surface_height", "up"});
+        engine::BodyBuoyancy buoyancy;
+        buoyancy.max_depth = realOr(force, k, "max_depth", buoyancy.max_depth);
+        buoyancy.volume = realOr(force, k, "volume", buoyancy.volume);
+        buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
+        buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
+        buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
+        for (const auto id : readBodyTargets(force, k, world_)) {
+          checkLinkCount(k);
+          buoyancy.body = id;
+          const auto added = world_.addBodyGenerator(buoyancy);
+          if (!added) throw ParamError(k, added.message());
+        }
+      } else if (type == "drag") {
         checkKeys(force, k, {"type", "all", "particles", "k1", "k2"});
         const Real k1 = realOr(force, k, "k1", 0.0);
         const Real k2 = realOr(force, k, "k2", 0.0);
@@ -408,8 +441,8 @@ class SceneBuilder {
           if (!added) throw ParamError(k, added.message());
         }
       } else {
-        throw ParamError(k + ".type",
-                         "unknown force " + quoteInput(type) + " (known: drag, buoyancy)");
+        throw ParamError(k + ".type", "unknown force " + quoteInput(type) +
+                                          " (known: drag, buoyancy, spring, bungee)");
       }
     }
   }

@@ -30,6 +30,11 @@ void takeLinks(const engine::World& world, std::vector<LinkSegment>& out) {
       }
     }
   });
+  for (const engine::PointSpring& spring : world.bodyGenerators().of<engine::PointSpring>()) {
+    const engine::DrawnSegment drawn =
+        engine::BodyForceKind<engine::PointSpring>::drawn(spring, world.bodies(), particles);
+    segment(drawn.a, drawn.b, drawn.tension);
+  }
   const engine::Links& links = world.links();
   if (links.empty()) return;
   // World::linkTensions is sorted by id.

@@ -1,20 +1,23 @@
 #!/usr/bin/env python3
 """Writes the body-format seeds of the engine corpus (engine_ops.h reads them): scenes of bodies
-of every shape, joints of every kind, requests, queries, sleeping, policies and copies."""
+of every shape, joints of every kind, requests, queries, sleeping, policies and copies; and, in
+the body-force format, the force generators on bodies."""
 import math
 import os
 import struct
 import sys
 
-OPS = dict(particle=0, spring=3, step=15, body=16, remove_body=18, pose=19, velocity=20,
+OPS = dict(particle=0, remove_particle=2, spring=3, remove_generator=13, step=15, body=16, remove_body=18, pose=19, velocity=20,
            force=21, torque=22, impulse=23, wake=24, ball=25, hinge=26, fixed=27, distance=28,
            remove_joint=29, motor=30, settings=31, ray=32, overlap=33, collider=34,
-           remove_collider=35, particle_contact=36, policy=37, copy=38)
+           remove_collider=35, particle_contact=36, policy=37, copy=38, point_spring=40,
+           body_drag=41, body_buoyancy=42)
+BODY_FORMAT, BODY_FORCE_FORMAT = 0xB0, 0xB1
 
 
 class Seed:
-    def __init__(self):
-        self.out = bytearray([0xB0])
+    def __init__(self, format_byte=BODY_FORMAT):
+        self.out = bytearray([format_byte])
 
     def byte(self, b):
         self.out.append(b & 0xFF)
@@ -218,6 +221,26 @@ def seeds():
     s.op('policy'); s.byte(15)  # clear()
     s.steps(2)
     out['engine_body_seed_policies'] = s
+
+    s = Seed(BODY_FORCE_FORMAT)
+    scene(s)
+    s.op('point_spring'); s.end_body(1, (0.3, 0, 0)); s.end_world((0, 0, 4)); s.real(20.0)
+    s.real(1.0); s.real(0.5); s.byte(0)
+    s.op('point_spring'); s.end_body(0); s.end_particle(0); s.real(10.0); s.real(-1.0); s.real(0.0)
+    s.byte(1)
+    s.op('point_spring'); s.end_body(0); s.end_body(2, (0, 0, 0.1)); s.real(5.0); s.real(0.5)
+    s.real(0.25); s.byte(0)
+    s.op('body_drag'); s.known(2); s.real(0.5); s.real(0.125); s.real(0.25)
+    s.op('body_buoyancy'); s.known(3); s.real(-1.0); s.real(0.0); s.real(1000.0); s.real(0.5)
+    s.vec3((0, 0, 1))
+    s.steps(30)
+    s.op('copy')
+    s.op('remove_generator'); s.u32(1)
+    s.op('remove_particle'); s.known(0)
+    s.steps(10)
+    s.op('remove_body'); s.known(0)
+    s.steps(20)
+    out['engine_body_seed_forces'] = s
     return out
 
 

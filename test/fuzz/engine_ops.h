@@ -5,8 +5,9 @@
 // the original does. Shared by the libFuzzer target (engine_fuzz.cpp) and the gtest that replays
 // saved inputs.
 //
-// Two formats: an input whose first byte is kBodyFormat adds rigid bodies, joints, colliders,
-// queries, divergence policies and copies to the particle calls; any other input is read as the
+// Three formats: an input whose first byte is kBodyFormat adds rigid bodies, joints, colliders,
+// queries, divergence policies and copies to the particle calls; one whose first byte is
+// kBodyForceFormat adds the force generators on bodies to those; any other input is read as the
 // particle calls alone, as it was before bodies existed, so saved inputs keep their meaning.
 // engine_body_seeds.py writes the body-format seeds; ENGINE_OPS_TRACE prints each call's outcome.
 
@@ -26,6 +27,7 @@ namespace mass_aggregate_sim {
 namespace fuzz {
 
 constexpr std::uint8_t kBodyFormat = 0xB0;
+constexpr std::uint8_t kBodyForceFormat = 0xB1;
 
 class ByteReader {
  public:
@@ -118,6 +120,7 @@ struct Snapshot {
   std::size_t colliders;
   std::size_t bodies;
   std::size_t joints;
+  std::size_t body_generators;
   bool paused;
   std::vector<double> pending;
   engine::BodySettings body_settings;
@@ -131,6 +134,7 @@ struct Snapshot {
         colliders(w.colliders().size()),
         bodies(w.bodies().size()),
         joints(w.joints().size()),
+        body_generators(w.bodyGenerators().size()),
         paused(w.paused()),
         body_settings(w.bodySettings()),
         config(w.config()) {
@@ -146,7 +150,7 @@ struct Snapshot {
     // Bitwise for the pending forces: a NaN there would be a change too.
     return hash == o.hash && particles == o.particles && generators == o.generators &&
            links == o.links && colliders == o.colliders && bodies == o.bodies &&
-           joints == o.joints && paused == o.paused && pending.size() == o.pending.size() &&
+           joints == o.joints && body_generators == o.body_generators && paused == o.paused && pending.size() == o.pending.size() &&
            (pending.empty() ||
             std::memcmp(pending.data(), o.pending.data(), pending.size() * sizeof(double)) == 0) &&
            sameSettings(body_settings, o.body_settings) && config.dt == o.config.dt &&
@@ -216,6 +220,28 @@ inline void checkJointEnds(const engine::World& world) {
   });
 }
 
+// Every point spring's ends are live: removing a body or particle removes its generators.
+inline void checkGeneratorEnds(const engine::World& world) {
+  for (const engine::PointSpring& spring : world.bodyGenerators().of<engine::PointSpring>()) {
+    for (const engine::JointEnd* end : {&spring.a, &spring.b}) {
+      if ((end->isBody() && !world.bodies().contains(end->body)) ||
+          (end->isParticle() && !world.particles().contains(end->particle))) {
+        fail("point spring " + std::to_string(spring.id) + " outlived an end");
+      }
+    }
+  }
+  world.bodyGenerators().forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    for (const auto& generator : kind) {
+      for (const engine::BodyId body : engine::BodyForceKind<Kind>::bodiesOf(generator)) {
+        if (!world.bodies().contains(body)) {
+          fail(std::string(engine::BodyForceKind<Kind>::kName) + " outlived its body");
+        }
+      }
+    }
+  });
+}
+
 inline void checkBodiesLive(const engine::World& world, const std::vector<engine::BodyId>& ids,
                             const char* what) {
   for (std::size_t k = 0; k < ids.size(); ++k) {
@@ -228,7 +254,8 @@ inline void checkBodiesLive(const engine::World& world, const std::vector<engine
 
 inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
   using namespace engine;
-  const bool bodies = size > 0 && data[0] == kBodyFormat;
+  const bool forces = size > 0 && data[0] == kBodyForceFormat;
+  const bool bodies = forces || (size > 0 && data[0] == kBodyFormat);
   ByteReader in(bodies ? data + 1 : data, bodies ? size - 1 : size);
   World world;
   std::vector<ParticleId> known;
@@ -239,7 +266,7 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
   const int max_ops = bodies ? 160 : 96;
   for (int op = 0; op < max_ops && !in.empty(); ++op) {
     const std::uint8_t raw_code = in.byte();
-    const int code = bodies ? raw_code % 40 : raw_code % 16;
+    const int code = forces ? raw_code % 43 : bodies ? raw_code % 40 : raw_code % 16;
     // An id from the ones handed out (live or stale), or an arbitrary one.
     const auto pickId = [&]() {
       const std::uint32_t pick = in.u32();
@@ -663,6 +690,38 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
         assigned.step();
         break;
       }
+      case 40: {
+        // One read per statement: the order of a call's arguments is the compiler's.
+        PointSpring spring;
+        spring.a = pickEnd();
+        spring.b = pickEnd();
+        spring.stiffness = in.real();
+        spring.rest_length = in.real();
+        spring.damping = in.real();
+        spring.pull_only = in.byte() & 1u;
+        accepted = world.addBodyGenerator(spring).isOk();
+        break;
+      }
+      case 41: {
+        BodyDrag drag;
+        drag.body = pickBody();
+        drag.k1 = in.real();
+        drag.k2 = in.real();
+        drag.angular = in.real();
+        accepted = world.addBodyGenerator(drag).isOk();
+        break;
+      }
+      case 42: {
+        BodyBuoyancy buoyancy;
+        buoyancy.body = pickBody();
+        buoyancy.max_depth = in.real();
+        buoyancy.volume = in.real();
+        buoyancy.liquid_density = in.real();
+        buoyancy.surface_height = in.real();
+        buoyancy.up = in.vec3();
+        accepted = world.addBodyGenerator(buoyancy).isOk();
+        break;
+      }
       default: {
         if (steps_left-- <= 0) break;
         checkedStep(world);
@@ -686,6 +745,7 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
       fail("a refused call (op " + std::to_string(code) + ") changed the world");
     }
     if (bodies) checkJointEnds(world);
+    if (forces) checkGeneratorEnds(world);
   }
 }
 

@@ -158,6 +158,62 @@ TEST(SceneBodiesTest, MisspeltAndBadKeysAreRefusedWithTheKey) {
       "scene.joints[1]", "~max_joints", one);
 }
 
+TEST(SceneBodiesTest, ForcesActOnBodiesThroughSpringsBungeesDragAndBuoyancy) {
+  const auto loaded = load(R"(
+particles:
+  - {name: bead, position: [0, 0, 5]}
+bodies:
+  - {name: crate, position: [0, 0, 2], shapes: [{type: box, half_extents: [0.5, 0.5, 0.5]}]}
+  - {name: float, position: [3, 0, 0], mass: 500, shapes: [{type: box, half_extents: [0.5, 0.5, 0.5]}]}
+forces:
+  - {type: spring, a: crate, anchor: [0.5, 0, 2.5], anchor_b: [0.5, 0, 4], stiffness: 50}
+  - {type: bungee, a: bead, b: crate, stiffness: 20, rest_length: 2, damping: 0.5}
+  - {type: drag, bodies: [crate, float], k1: 0.5, k2: 0.1, angular: 0.2}
+  - {type: buoyancy, bodies: [float], liquid_density: 1000}
+  - {type: drag, particles: [bead], k1: 0.3}
+)");
+  ASSERT_TRUE(loaded.isOk()) << loaded.message();
+  const engine::World& world = loaded.value().world;
+  const auto& springs = world.bodyGenerators().of<engine::PointSpring>();
+  ASSERT_EQ(springs.size(), 2u);
+  EXPECT_TRUE(springs[0].a.isBody());
+  EXPECT_TRUE(springs[0].b.isWorld());
+  EXPECT_NEAR((springs[0].a.point - Vec3(0.5, 0, 0.5)).norm(), 0.0, 1e-12);  // the body's frame
+  EXPECT_NEAR(springs[0].rest_length, 1.5, 1e-12);  // the distance when loaded
+  EXPECT_FALSE(springs[0].pull_only);
+  EXPECT_TRUE(springs[1].a.isParticle());
+  EXPECT_TRUE(springs[1].pull_only);
+  EXPECT_DOUBLE_EQ(springs[1].rest_length, 2.0);
+  EXPECT_DOUBLE_EQ(springs[1].damping, 0.5);
+  ASSERT_EQ(world.bodyGenerators().of<engine::BodyDrag>().size(), 2u);
+  EXPECT_DOUBLE_EQ(world.bodyGenerators().of<engine::BodyDrag>()[1].angular, 0.2);
+  ASSERT_EQ(world.bodyGenerators().of<engine::BodyBuoyancy>().size(), 1u);
+  EXPECT_NEAR(world.bodyGenerators().of<engine::BodyBuoyancy>()[0].volume, 1.0, 1e-12);
+  EXPECT_EQ(world.generators().of<engine::Drag>().size(), 1u);
+  const std::string two =
+      "particles: [{name: p, position: [0, 0, 5]}, {name: q, position: [1, 0, 5]}]\n"
+      "bodies: [{name: a, position: [0, 0, 0], shapes: [{type: sphere, radius: 0.1}]}]\n";
+  expectError(two + "forces: [{type: spring, a: p, b: q, stiffness: 1}]", "scene.forces[0]",
+              "needs a body");
+  expectError(two + "forces: [{type: spring, a: a, stiffness: 1}]", "scene.forces[0].anchor_b",
+              "is required for an end in the world");
+  expectError(two + "forces: [{type: spring, a: a, b: p, stiffnes: 1}]", "scene.forces[0].stiffnes",
+              "unknown key");
+  expectError(two + "forces: [{type: spring, a: nobody, b: p}]", "scene.forces[0].a",
+              "no body or particle named 'nobody'");
+  expectError(two + "forces: [{type: spring, a: a, b: p, rest_length: -1}]",
+              "scene.forces[0].rest_length", "must be >= 0");
+  expectError(two + "forces: [{type: drag, bodies: [b], k1: 1}]", "scene.forces[0].bodies[0]",
+              "no body named 'b'");
+  expectError(two + "forces: [{type: drag, bodies: [a], k1: -1}]", "scene.forces[0]", "k1 and k2");
+  expectError(two + "forces: [{type: buoyancy, bodies: [a], particles: [p]}]",
+              "scene.forces[0].particles", "unknown key");
+  SceneOverrides few;
+  few.max_links = 1;
+  expectError(two + "forces: [{type: drag, bodies: [a], k1: 1}, {type: drag, bodies: [a], k1: 1}]",
+              "scene.forces[1]", "~max_links", few);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim

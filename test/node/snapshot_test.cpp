@@ -48,6 +48,25 @@ TEST(SnapshotTest, CopiesWhatThePublishersNeed) {
   EXPECT_DOUBLE_EQ(snapshot.links[0].tension, 10.0 * ((pa - pb).norm() - 1.0));
 }
 
+TEST(SnapshotTest, DrawsASpringOnABodyAsALinkWithItsTension) {
+  engine::World world;
+  engine::BodySpec body;
+  body.shapes.push_back(engine::BodyShapeSpec{});
+  body.shapes[0].geometry = engine::SphereShape{0.5};
+  body.pose.position = Vec3(0, 0, 2);
+  const auto id = world.addBody(body);
+  ASSERT_TRUE(id);
+  ASSERT_TRUE(world.addBodyGenerator(
+      engine::PointSpring::between(engine::JointEnd::onBody(*id, Vec3(0.5, 0, 0)),
+                                   engine::JointEnd::inWorld(Vec3(0.5, 0, 5)), 4.0, 1.0)));
+  WorldSnapshot snapshot;
+  takeSnapshot(world, snapshot);
+  ASSERT_EQ(snapshot.links.size(), 1u);
+  EXPECT_NEAR((snapshot.links[0].a - Vec3(0.5, 0, 2)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(snapshot.links[0].b, Vec3(0.5, 0, 5));
+  EXPECT_NEAR(snapshot.links[0].tension, 4.0 * (3.0 - 1.0), 1e-12);
+}
+
 // The consumer only ever sees whole frames, the latest one published, and never waits for the
 // producer's copy.
 TEST(FrameExchangeTest, HandsOverWholeFramesOnly) {

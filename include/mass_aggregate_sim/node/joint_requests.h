@@ -42,6 +42,11 @@ struct JointValues {
   std::map<std::string, engine::Real> numbers;
 };
 
+// The engine's end for `ref` holding the world point `anchor` (a body keeps it in its own frame,
+// a particle is itself, the world is the point); `field` names the end in refusals.
+engine::Result<engine::JointEnd> resolveJointEnd(const engine::World& world, const JointEndRef& ref,
+                                                 const engine::Vec3& anchor, const char* field);
+
 struct JointRequest {
   std::string type;
   std::string name;  // empty: the joint is shown as joint_<id>

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "mass_aggregate_sim/node/joint_requests.h"
@@ -32,6 +33,14 @@ void readBodies(XmlRpc::XmlRpcValue& bodies, const std::string& key, engine::Wor
 // a and b name a body or a particle, b left out is the world. Names go into `names`.
 void readJoints(XmlRpc::XmlRpcValue& joints, const std::string& key, engine::World& world,
                 const BodyLimits& limits, JointNames& names);
+// A `forces` entry of type spring or bungee, a body at one end at least: {type, a, b, anchor,
+// anchor_b, stiffness, rest_length, damping}; a and b name a body or a particle, b left out is
+// the world; anchor is end a's world point (a body's origin or the particle when left out),
+// anchor_b end b's (required for the world); rest_length left out is the distance.
+void readPointSpring(XmlRpc::XmlRpcValue& spring, const std::string& key, engine::World& world);
+// The bodies of a `forces` entry's `bodies: [names]`.
+std::vector<engine::BodyId> readBodyTargets(XmlRpc::XmlRpcValue& entry, const std::string& key,
+                                            const engine::World& world);
 
 }  // namespace node
 }  // namespace mass_aggregate_sim

@@ -8,6 +8,7 @@
 #include "engine/bodies/body_motion.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
+#include "engine/forces/body_force_stage.h"
 #include "engine/integrators/integrators.h"
 #include "engine/world/step_context.h"
 
@@ -287,17 +288,29 @@ void integrateBodyVelocities(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   const Real h = ctx.h;
   const Vec3& g = ctx.config.gravity;
+  const bool generated = !ws.generator_force.empty();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::int32_t k = ws.solver_of_body[i];
     if (k == kNoBody || !bodies.dynamic(i)) continue;
-    SolverBody& sb = ws.solver[static_cast<std::size_t>(k)];
+    const auto solver = static_cast<std::size_t>(k);
+    SolverBody& sb = ws.solver[solver];
+    // The requests' force and torque, and the generators' (body_force_stage.h). A generator's
+    // force changes with the state: the body it pushes moves as semi-implicit Euler moves it,
+    // x' = x + h v' (the free body's parabola, x' = x + h v' - h^2 a / 2, would gain a spring's
+    // energy and hold a body at rest on one at v = h g / 2).
+    const bool pushed = generated && !ws.generator_force[solver].isZero(0.0);
+    const Vec3 force =
+        pushed ? Vec3(bodies.force(i) + ws.generator_force[solver]) : bodies.force(i);
+    const Vec3 torque =
+        generated ? Vec3(bodies.torque(i) + ws.generator_torque[solver]) : bodies.torque(i);
+    if (pushed) sb.held = true;
     // v' = (v + h (g + F / m)) / (1 + h c)
-    sb.acceleration = g + bodies.inverseMass(i) * bodies.force(i);
+    sb.acceleration = g + bodies.inverseMass(i) * force;
     sb.v = (sb.v + h * sb.acceleration) / (1.0 + h * bodies.linearDamping(i));
     // In the principal frame: the torque's kick, then the gyroscopic term implicitly.
     const Quat q = sb.dq * bodies.orientation(i);
     Vec3 w_body = q.conjugate() * sb.w;
-    w_body += h * bodies.inversePrincipalInertia(i).cwiseProduct(q.conjugate() * bodies.torque(i));
+    w_body += h * bodies.inversePrincipalInertia(i).cwiseProduct(q.conjugate() * torque);
     if (ctx.body_settings->gyroscopic) {
       w_body = gyroscopicStep(w_body, bodies.principalInertia(i), h);
     }
@@ -492,6 +505,8 @@ void finaliseBodies(StepContext& ctx) {
       }
     }
   });
+  // And so does a body a force generator joins to another body or a particle.
+  if (ctx.body_generators) markJoinedBodies(*ctx.body_generators, bodies, busy);
   updateSleep(bodies, ws, *ctx.joints, *ctx.body_settings, ctx.dt, busy);
 }
 

@@ -68,6 +68,13 @@ struct BodyWorkspace {
   };
   std::vector<LinkImpulse> link_impulses;
   std::vector<Real> heights;  // per solver body, along -gravity
+  // The force generators on bodies, this substep: per moving body (by solver body; empty without
+  // generators) their force and torque about the centre of mass; the particles' external forces,
+  // the user's of the step and theirs.
+  std::vector<Vec3> generator_force;
+  std::vector<Vec3> generator_torque;
+  Vec3Array user_particle_forces;
+  Vec3Array particle_forces;
   JointRows joints;
   bool prepared = false;  // the step's rows exist (bodies awake, or particles touching them)
 };

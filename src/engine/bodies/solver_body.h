@@ -23,9 +23,9 @@ struct SolverBody {
   Mat3 dq_matrix = Mat3::Identity();  // dq as a matrix, kept with it
   Real inverse_mass = 0.0;
   Mat3 inverse_inertia = Mat3::Zero();  // world frame (zero for a particle)
-  // The acceleration of the substep (gravity and forces), and whether a contact or a joint
-  // holds the body this step: a free body's position follows it exactly (a parabola), a held one
-  // moves with the velocity the solver leaves (semi-implicit Euler).
+  // The acceleration of the substep (gravity and forces), and whether a contact, a joint or a
+  // force generator holds the body this step: a free body's position follows it exactly (a
+  // parabola), a held one moves with the velocity the solver leaves (semi-implicit Euler).
   Vec3 acceleration = Vec3::Zero();
   bool held = false;
 

@@ -5,6 +5,7 @@
 
 #include "engine/core/checks.h"
 #include "engine/forces/force_evaluation.h"
+#include "engine/forces/force_laws.h"
 #include "engine/integrators/implicit_system.h"
 
 namespace mass_aggregate_sim {
@@ -34,11 +35,9 @@ void ForceKind<Buoyancy>::accumulate(const std::vector<Buoyancy>& buoyancies,
   for (const Buoyancy& buoyancy : buoyancies) {
     const std::size_t i = e.particles.denseIndexUnchecked(buoyancy.particle);
     const Real height = buoyancy.up.dot(e.x.col(i)) - buoyancy.surface_height;
-    if (height >= buoyancy.max_depth) continue;
+    const Real submerged = submergedFraction(height, buoyancy.max_depth);
+    if (submerged == 0.0) continue;
     const Real full = buoyancy.liquid_density * buoyancy.volume * e.gravity_magnitude;
-    const Real submerged = height <= -buoyancy.max_depth
-                               ? 1.0
-                               : (buoyancy.max_depth - height) / (2.0 * buoyancy.max_depth);
     force.col(i) += full * submerged * buoyancy.up;
   }
 }

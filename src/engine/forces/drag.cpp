@@ -3,6 +3,7 @@
 
 #include "engine/core/checks.h"
 #include "engine/forces/force_evaluation.h"
+#include "engine/forces/force_laws.h"
 #include "engine/integrators/implicit_system.h"
 
 namespace mass_aggregate_sim {
@@ -21,9 +22,7 @@ void ForceKind<Drag>::accumulate(const std::vector<Drag>& drags, const ForceEval
                                  Eigen::Ref<Vec3Array> force, Real* elastic) {
   for (const Drag& drag : drags) {
     const std::size_t i = e.particles.denseIndexUnchecked(drag.particle);
-    const Vec3 vi = e.v.col(i);
-    // -(k1 |v| + k2 |v|^2) v/|v| = -(k1 + k2 |v|) v
-    force.col(i) -= (drag.k1 + drag.k2 * vi.norm()) * vi;
+    force.col(i) += dragForce(e.v.col(i), drag.k1, drag.k2);
   }
 }
 

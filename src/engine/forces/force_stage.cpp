@@ -1,5 +1,6 @@
 #include "engine/forces/force_stage.h"
 
+#include "engine/forces/body_force_stage.h"
 #include "engine/forces/particle_acceleration.h"
 #include "engine/forces/stiff_spring_stage.h"
 #include "engine/solver/contact_workspace.h"
@@ -91,6 +92,7 @@ Real ForceStage::elasticEnergy(const ForceScene& scene) {
 }
 
 void applyForces(StepContext& ctx) {
+  applyBodyForces(ctx);
   ParticleStore& particles = ctx.particles;
   if (ctx.contacts_active && ctx.collisions.continuous) {
     ctx.contacts.substep_start = particles.positions();

@@ -64,9 +64,9 @@ class ForceStage {
 
 class StepContext;
 
-// The force stage's part of a substep before the integrator runs: what the stiff springs' closed
-// form needs from the start of the substep (stiff_spring_stage.h), and the start positions the
-// swept tests measure from.
+// The force stage's part of a substep before the integrator runs: the forces of the generators on
+// bodies (body_force_stage.h), what the stiff springs' closed form needs from the start of the
+// substep (stiff_spring_stage.h), and the start positions the swept tests measure from.
 void applyForces(StepContext& ctx);
 
 }  // namespace engine

@@ -6,20 +6,19 @@
 
 #include "engine/core/checks.h"
 #include "engine/forces/force_evaluation.h"
+#include "engine/forces/force_laws.h"
 #include "engine/integrators/implicit_system.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr Real kMinLength = 1e-12;
-
 // dF_a/dx_a of F_a = -k (l - L) n, d = x_a - x_b, n = d / l: -k (n n^T + (1 - L/l) (I - n n^T)),
 // with the transverse factor clamped at 0 (a compressed spring's transverse term would make the
 // system indefinite); D = dF_a/dv_a = -c n n^T for the dashpot.
 void springJacobians(const Vec3& d, const Spring& spring, Mat3& k, Mat3& dv) {
   const Real length = d.norm();
-  if (length < kMinLength || (spring.pull_only && length <= spring.rest_length)) {
+  if (length < kMinSpringLength || (spring.pull_only && length <= spring.rest_length)) {
     k.setZero();
     dv.setZero();
     return;

@@ -8,48 +8,11 @@
 #include <utility>
 
 #include "engine/core/simd.h"
+#include "engine/forces/force_laws.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
-
-constexpr Real kMinLength = 1e-12;
-
-// Force on the first end of a spring from a to b (the second end gets the opposite), in scalars
-// on raw columns so the hot loop has no temporaries; va, vb are read only when c != 0.
-// With d = x_a - x_b, l = |d|, n = d / l: F_a = -(k (l - L) + c (v_a - v_b).n) n.
-// `pull_only` makes it a bungee: nothing while l <= L. Returns false when there is no force.
-// Takes l and 1/l computed by the caller (singly or a block at a time).
-inline bool springForceFromLength(const Real* d, const Real length, const Real inverse_length,
-                                  const Real* va, const Real* vb, const Real stiffness,
-                                  const Real rest_length, const Real damping, const bool pull_only,
-                                  Real* force) {
-  if (length < kMinLength) return false;
-  const Real extension = length - rest_length;
-  if (pull_only && extension <= 0.0) return false;
-  // n = d * (1/l) differs from d / l only in the last bit, and costs one division, not three.
-  const Real n[3] = {d[0] * inverse_length, d[1] * inverse_length, d[2] * inverse_length};
-  Real damping_force = 0.0;
-  if (damping != 0.0) {
-    damping_force =
-        damping * ((va[0] - vb[0]) * n[0] + (va[1] - vb[1]) * n[1] + (va[2] - vb[2]) * n[2]);
-  }
-  const Real magnitude = -(stiffness * extension + damping_force);
-  force[0] = magnitude * n[0];
-  force[1] = magnitude * n[1];
-  force[2] = magnitude * n[2];
-  return true;
-}
-
-inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Real* vb,
-                        const Real stiffness, const Real rest_length, const Real damping,
-                        const bool pull_only, Real* force) {
-  const Real d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
-  const Real length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (length < kMinLength) return false;
-  return springForceFromLength(d, length, 1.0 / length, va, vb, stiffness, rest_length, damping,
-                               pull_only, force);
-}
 
 // Pointer to column i of a 3 x N array that may have an outer stride.
 template <typename Array>
@@ -148,7 +111,7 @@ inline __attribute__((always_inline)) void runGroupForces(const DenseSpring* s,
   const Real4 rest = {s[0].rest_length, s[1].rest_length, s[2].rest_length, s[3].rest_length};
   const Real4 stiffness = {s[0].stiffness, s[1].stiffness, s[2].stiffness, s[3].stiffness};
   const Real4 extension = length - rest;
-  const auto long_enough = (simd::Mask4)(length >= simd::broadcast(kMinLength));
+  const auto long_enough = (simd::Mask4)(length >= simd::broadcast(kMinSpringLength));
   if constexpr (kPullOnly) {
     const auto taut = (simd::Mask4)(extension > simd::broadcast(0.0));
     exerts &= long_enough & taut;
@@ -240,7 +203,8 @@ inline __attribute__((always_inline)) void runBlocks(const DenseSpring* springs,
       const Real d[3] = {x[a0 + k] - x[b0 + k], x[a0 + k + 1] - x[b0 + k + 1],
                          x[a0 + k + 2] - x[b0 + k + 2]};
       const Real length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (length < kMinLength || (kPullOnly && length - block[j].rest_length <= 0.0)) continue;
+      if (length < kMinSpringLength || (kPullOnly && length - block[j].rest_length <= 0.0))
+        continue;
       for (int c = 0; c < 3; ++c) {
         force[a0 + k + c] += f[k + c];
         force[b0 + k + c] -= f[k + c];

@@ -7,6 +7,7 @@
 #include "engine/bodies/body_workspace.h"
 #include "engine/collision/contact_stages.h"
 #include "engine/core/damping_flow.h"
+#include "engine/forces/body_force_stage.h"
 #include "engine/forces/force_evaluation.h"
 #include "engine/integrators/integrators.h"
 #include "engine/solver/contact_workspace.h"
@@ -75,7 +76,7 @@ StepContext World::beginStep() {
   StepContext ctx(
       config_, collision_settings_, particles_, generators_, links_, colliders_, materials_,
       ForceScene{particles_, generators_, generators_version_, config_.gravity,
-                 has_external_force_},
+                 has_external_force_ || bodyForcesReachParticles(body_generators_)},
       *integration_, caches, *contacts_, *guard_, last_contact_stats_, dropped_this_step_);
   ctx.dt = config_.dt;
   ctx.substeps = substeps_used_;
@@ -100,6 +101,7 @@ StepContext World::beginStep() {
   if (!bodies_.empty()) {
     ctx.bodies = &bodies_;
     ctx.joints = &joints_;
+    ctx.body_generators = &body_generators_;
     ctx.body_settings = &body_settings_;
     ctx.body_ws = &*body_ws_;
     ctx.colliders_version = colliders_version_;
@@ -113,8 +115,9 @@ StepContext World::beginStep() {
 void World::finalise(StepContext& ctx) {
   const std::uint64_t divergences_before = guard_->divergence_count;
   finaliseBodies(ctx);
-  if (has_external_force_) {
-    // Held for the step only. Velocity Verlet's cached accelerations never hold them.
+  if (has_external_force_ || ctx.scene.external) {
+    // Held for the step only (the generators on bodies set theirs every substep). Velocity
+    // Verlet's cached accelerations never hold them.
     particles_.forces().setZero();
     has_external_force_ = false;
     ctx.scene.external = false;

@@ -59,10 +59,11 @@ class StepContext {
   GuardState& guard;
   ContactStats& contact_stats;  // of the last substep
   std::size_t& dropped;         // contacts dropped by max_contacts, over the step
-  int substep = 0;  // the substep being taken
+  int substep = 0;              // the substep being taken
   // Rigid bodies: all null in a world without them (their stages return at once).
   BodyStore* bodies = nullptr;
   Joints* joints = nullptr;
+  const BodyForceGenerators* body_generators = nullptr;
   const BodySettings* body_settings = nullptr;
   BodyWorkspace* body_ws = nullptr;
   // Changes whenever a collider is added or removed (the bodies' broadphase holds them).

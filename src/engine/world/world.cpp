@@ -12,6 +12,7 @@
 #include "engine/collision/geometry.h"
 #include "engine/core/damping_flow.h"
 #include "engine/core/state_hash.h"
+#include "engine/forces/body_force_stage.h"
 #include "engine/integrators/integrator_state.h"
 #include "engine/solver/contact_workspace.h"
 #include "engine/world/guard_state.h"
@@ -96,6 +97,17 @@ Status World::removeParticle(const ParticleId id) {
                               }),
                kind.end());
   });
+  body_generators_.forEach([&](auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    for (const auto& generator : kind) {
+      if (BodyForceKind<Kind>::refersTo(generator, id)) {
+        wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
+      }
+    }
+    eraseReferencing(kind, [](const Kind& generator, const ParticleId particle) {
+      return BodyForceKind<Kind>::refersTo(generator, particle);
+    });
+  });
   materials_.forget(id);
   const Status removed = particles_.remove(id);
   contacts_->resolver.clearWarmStart();
@@ -173,7 +185,17 @@ Status World::removeGenerator(const GeneratorId id) {
     kind.erase(it);
     return true;
   };
-  if (!generators_.any(eraseById) && !links_.any(eraseById)) {
+  const auto eraseBodyGenerator = [&](auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    const auto it =
+        std::find_if(kind.begin(), kind.end(), [id](const auto& item) { return item.id == id; });
+    if (it == kind.end()) return false;
+    wakeBodies(BodyForceKind<Kind>::bodiesOf(*it));
+    kind.erase(it);
+    return true;
+  };
+  if (!generators_.any(eraseById) && !links_.any(eraseById) &&
+      !body_generators_.any(eraseBodyGenerator)) {
     return Status::error("no force generator or link with id " + std::to_string(id));
   }
   ++generators_version_;
@@ -289,6 +311,7 @@ void World::clear() {
   links_.clear();
   bodies_.clear();
   joints_.clear();
+  body_generators_.clear();
   body_ws_ = Owned<BodyWorkspace>();
   materials_.clear();
   ++generators_version_;
@@ -343,8 +366,10 @@ Real World::gravitationalEnergy() const {
 }
 
 Real World::springEnergy() const {
-  return caches_->forces.elasticEnergy(ForceScene{particles_, generators_, generators_version_,
-                                                  config_.gravity, has_external_force_});
+  const Real particles = caches_->forces.elasticEnergy(ForceScene{
+      particles_, generators_, generators_version_, config_.gravity, has_external_force_});
+  if (body_generators_.empty()) return particles;
+  return particles + bodyGeneratorEnergy(body_generators_, bodies_, particles_);
 }
 
 Vec3 World::linearMomentum() const {

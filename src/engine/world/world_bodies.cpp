@@ -51,6 +51,16 @@ Status World::removeBody(const BodyId id) {
   if (!dense) return Status::error("body: " + bodies_.describeInvalid(id));
   BodyWorkspace& ws = *body_ws_;
   wakeIsland(bodies_, ws, joints_, *dense);
+  body_generators_.forEach([&](auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    const auto refers = [id](const Kind& generator) {
+      return BodyForceKind<Kind>::refersTo(generator, id);
+    };
+    for (const auto& generator : kind) {
+      if (refers(generator)) wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
+    }
+    kind.erase(std::remove_if(kind.begin(), kind.end(), refers), kind.end());
+  });
   joints_.forEach([&](auto& kind) {
     for (const auto& joint : kind) {
       if (joint.a.body == id || joint.b.body == id) wakeJointEnds(joint.a, joint.b);
@@ -288,6 +298,13 @@ void World::wakeJointEnds(const JointEnd& a, const JointEnd& b) {
   for (const JointEnd* end : {&a, &b}) {
     if (!end->isBody()) continue;
     const auto dense = bodies_.find(end->body);
+    if (dense) wakeIsland(bodies_, *body_ws_, joints_, *dense);
+  }
+}
+
+void World::wakeBodies(const std::vector<BodyId>& bodies) {
+  for (const BodyId body : bodies) {
+    const auto dense = bodies_.find(body);
     if (dense) wakeIsland(bodies_, *body_ws_, joints_, *dense);
   }
 }

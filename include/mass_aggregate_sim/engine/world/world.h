@@ -18,6 +18,7 @@
 #include "mass_aggregate_sim/engine/core/particle_store.h"
 #include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/types.h"
+#include "mass_aggregate_sim/engine/forces/body_force_generators.h"
 #include "mass_aggregate_sim/engine/forces/force_generators.h"
 #include "mass_aggregate_sim/engine/joints/joints.h"
 #include "mass_aggregate_sim/engine/solver/links.h"
@@ -105,7 +106,7 @@ class World {
   Result<GeneratorId> addGenerator(Kind generator);
   template <typename Kind>
   Result<GeneratorId> addLink(Kind link);
-  // Removes a force generator or a link.
+  // Removes a force generator (on particles or on bodies) or a link.
   Status removeGenerator(GeneratorId id);
   const ForceGenerators& generators() const { return generators_; }
   const Links& links() const { return links_; }
@@ -145,6 +146,12 @@ class World {
   const BodySettings& bodySettings() const { return body_settings_; }
   // Every body contact with at least one point, as of the last step, in the solver's order.
   std::vector<BodyContactReport> bodyContacts() const;
+  // Force generators on bodies (BodyForceKinds: BodyDrag, PointSpring, BodyBuoyancy), in the
+  // generators' id space; validated by their kind (BodyForceKind<K>::validate). Removed with
+  // their bodies and particles; they wake the bodies they act on.
+  template <typename Kind>
+  Result<GeneratorId> addBodyGenerator(Kind generator);
+  const BodyForceGenerators& bodyGenerators() const { return body_generators_; }
 
   // --- joints (JointKinds: BallJoint, HingeJoint, FixedJoint, DistanceJoint), between two
   // bodies, a body and a particle, or a body and the world; validated by their kind. ---
@@ -239,6 +246,7 @@ class World {
   // unable to move.
   Status checkJointEnds(const JointEnd& a, const JointEnd& b, bool turns) const;
   void wakeJointEnds(const JointEnd& a, const JointEnd& b);
+  void wakeBodies(const std::vector<BodyId>& bodies);
   Result<ColliderId> nextColliderId();
   // The forces, the springs' layout or the state changed: every force cache and the energy
   // guard's reference are stale (position Verlet's history is kept per particle).
@@ -264,6 +272,7 @@ class World {
   BodyStore bodies_;
   Joints joints_;
   JointId next_joint_id_ = 1;
+  BodyForceGenerators body_generators_;
   BodySettings body_settings_;
   CollisionSettings collision_settings_;
   ParticleMaterials materials_;
@@ -321,6 +330,17 @@ Result<ColliderId> World::addCollider(Shape shape) {
     if (bodies_.type(i) != BodyType::kFixed) bodies_.setAwake(i, true);
   }
   return id;
+}
+
+template <typename Kind>
+Result<GeneratorId> World::addBodyGenerator(Kind generator) {
+  const Status valid = BodyForceKind<Kind>::validate(generator, JointScene{bodies_, particles_});
+  if (!valid) return valid;
+  generator.id = nextGeneratorId();
+  body_generators_.of<Kind>().push_back(generator);
+  wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
+  stateChanged();
+  return generator.id;
 }
 
 template <typename Kind>

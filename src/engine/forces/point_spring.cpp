@@ -1,0 +1,111 @@
+// The point spring kind (point_spring.h): validation, force and energy.
+#include "mass_aggregate_sim/engine/forces/point_spring.h"
+
+#include <string>
+
+#include "engine/core/checks.h"
+#include "engine/forces/body_force_stage.h"
+#include "engine/forces/force_laws.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+Status checkEnd(const JointEnd& end, const JointScene& scene, const char* name) {
+  if (end.isBody() && end.isParticle()) {
+    return Status::error(std::string(name) + ": an end is a body or a particle, not both");
+  }
+  if (!end.point.allFinite()) return Status::error(std::string(name) + ": point is not finite");
+  if (end.isBody()) return scene.bodies.checkReference(end.body, name);
+  if (end.isParticle()) return scene.particles.checkReference(end.particle, name);
+  return Status::ok();
+}
+
+bool still(const JointEnd& end, const JointScene& scene) {
+  if (end.isBody()) {
+    return scene.bodies.type(scene.bodies.denseIndexUnchecked(end.body)) == BodyType::kFixed;
+  }
+  if (end.isParticle()) {
+    return scene.particles.inverseMasses()[static_cast<Eigen::Index>(
+               scene.particles.denseIndexUnchecked(end.particle))] <= 0.0;
+  }
+  return true;
+}
+
+}  // namespace
+
+Status BodyForceKind<PointSpring>::validate(PointSpring& spring, const JointScene& scene) {
+  Status valid = checkEnd(spring.a, scene, "a");
+  if (valid) valid = checkEnd(spring.b, scene, "b");
+  if (!valid) return valid;
+  if (!spring.a.isBody() && !spring.b.isBody()) {
+    return Status::error(
+        "a point spring needs a body at one end at least (particles alone use a spring)");
+  }
+  if (spring.a.isBody() && spring.b.isBody() && spring.a.body == spring.b.body) {
+    return Status::error("a point spring's ends are on the same body");
+  }
+  if (still(spring.a, scene) && still(spring.b, scene)) {
+    return Status::error("neither end of the point spring can move");
+  }
+  if (!finiteNonNegative(spring.stiffness)) {
+    return Status::error("stiffness must be finite and >= 0");
+  }
+  if (!finiteNonNegative(spring.damping)) return Status::error("damping must be finite and >= 0");
+  if (!std::isfinite(spring.rest_length)) return Status::error("rest_length is not finite");
+  if (spring.rest_length < 0.0) {
+    const BodyForceScene ends(scene.bodies, scene.particles, nullptr, 0.0);
+    spring.rest_length = (ends.end(spring.a).position - ends.end(spring.b).position).norm();
+  }
+  return Status::ok();
+}
+
+std::vector<BodyId> BodyForceKind<PointSpring>::bodiesOf(const PointSpring& spring) {
+  std::vector<BodyId> bodies;
+  for (const JointEnd* end : {&spring.a, &spring.b}) {
+    if (end->isBody()) bodies.push_back(end->body);
+  }
+  return bodies;
+}
+
+void BodyForceKind<PointSpring>::accumulate(const std::vector<PointSpring>& springs,
+                                            const BodyForceScene& scene, BodyForceSums& sums) {
+  for (const PointSpring& spring : springs) {
+    const ForceEnd a = scene.end(spring.a);
+    const ForceEnd b = scene.end(spring.b);
+    Vec3 f;
+    if (!springForce(a.position.data(), b.position.data(), a.velocity.data(), b.velocity.data(),
+                     spring.stiffness, spring.rest_length, spring.damping, spring.pull_only,
+                     f.data())) {
+      continue;
+    }
+    sums.add(a, f);
+    sums.add(b, -f);
+  }
+}
+
+DrawnSegment BodyForceKind<PointSpring>::drawn(const PointSpring& spring, const BodyStore& bodies,
+                                               const ParticleStore& particles) {
+  const BodyForceScene scene(bodies, particles, nullptr, 0.0);
+  const Vec3 a = scene.end(spring.a).position;
+  const Vec3 b = scene.end(spring.b).position;
+  const Real extension = (a - b).norm() - spring.rest_length;
+  const Real tension = spring.pull_only && extension <= 0.0 ? 0.0 : spring.stiffness * extension;
+  return DrawnSegment{a, b, tension};
+}
+
+Real BodyForceKind<PointSpring>::energy(const std::vector<PointSpring>& springs,
+                                        const BodyForceScene& scene) {
+  Real energy = 0.0;
+  for (const PointSpring& spring : springs) {
+    const Real extension =
+        (scene.end(spring.a).position - scene.end(spring.b).position).norm() - spring.rest_length;
+    if (spring.pull_only && extension <= 0.0) continue;
+    // k (l - L)^2 / 2
+    energy += 0.5 * spring.stiffness * extension * extension;
+  }
+  return energy;
+}
+
+}  // namespace engine
+}  // namespace mass_aggregate_sim
