@@ -150,7 +150,8 @@ struct Snapshot {
     // Bitwise for the pending forces: a NaN there would be a change too.
     return hash == o.hash && particles == o.particles && generators == o.generators &&
            links == o.links && colliders == o.colliders && bodies == o.bodies &&
-           joints == o.joints && body_generators == o.body_generators && paused == o.paused && pending.size() == o.pending.size() &&
+           joints == o.joints && body_generators == o.body_generators && paused == o.paused &&
+           pending.size() == o.pending.size() &&
            (pending.empty() ||
             std::memcmp(pending.data(), o.pending.data(), pending.size() * sizeof(double)) == 0) &&
            sameSettings(body_settings, o.body_settings) && config.dt == o.config.dt &&
