@@ -378,6 +378,17 @@ class SceneBuilder {
     return ids;
   }
 
+  // One generator of the kind on each body of `bodies: [names]`.
+  template <typename Kind>
+  void addOnBodies(Kind generator, XmlRpcValue& force, const std::string& k) {
+    for (const auto id : readBodyTargets(force, k, world_)) {
+      checkLinkCount(k);
+      generator.body = id;
+      const auto added = world_.addBodyGenerator(generator);
+      if (!added) throw ParamError(k, added.message());
+    }
+  }
+
   void readForces(XmlRpcValue& list, const std::string& key) {
     requireArray(list, key);
     for (int i = 0; i < list.size(); ++i) {
@@ -393,12 +404,7 @@ class SceneBuilder {
         drag.k1 = realOr(force, k, "k1", 0.0);
         drag.k2 = realOr(force, k, "k2", 0.0);
         drag.angular = realOr(force, k, "angular", 0.0);
-        for (const auto id : readBodyTargets(force, k, world_)) {
-          checkLinkCount(k);
-          drag.body = id;
-          const auto added = world_.addBodyGenerator(drag);
-          if (!added) throw ParamError(k, added.message());
-        }
+        addOnBodies(drag, force, k);
       } else if (type == "buoyancy" && has(force, "bodies")) {
         checkKeys(
             force, k,
@@ -409,12 +415,7 @@ class SceneBuilder {
         buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
         buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
         buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
-        for (const auto id : readBodyTargets(force, k, world_)) {
-          checkLinkCount(k);
-          buoyancy.body = id;
-          const auto added = world_.addBodyGenerator(buoyancy);
-          if (!added) throw ParamError(k, added.message());
-        }
+        addOnBodies(buoyancy, force, k);
       } else if (type == "drag") {
         checkKeys(force, k, {"type", "all", "particles", "k1", "k2"});
         const Real k1 = realOr(force, k, "k1", 0.0);

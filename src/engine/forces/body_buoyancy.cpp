@@ -32,15 +32,8 @@ Status BodyForceKind<BodyBuoyancy>::validate(BodyBuoyancy& buoyancy, const Joint
   if (!std::isfinite(buoyancy.volume)) return Status::error("volume is not finite");
   if (!std::isfinite(buoyancy.max_depth)) return Status::error("max_depth is not finite");
   if (buoyancy.max_depth == 0.0) return Status::error("max_depth must be > 0 (or < 0: the reach)");
-  if (!finiteNonNegative(buoyancy.liquid_density)) {
-    return Status::error("liquid_density must be finite and >= 0");
-  }
-  if (!std::isfinite(buoyancy.surface_height)) {
-    return Status::error("surface_height is not finite");
-  }
-  if (!buoyancy.up.allFinite() || buoyancy.up.norm() < 1e-9) {
-    return Status::error("up must be a finite non-zero vector");
-  }
+  const Status liquid = checkLiquid(buoyancy.liquid_density, buoyancy.surface_height, buoyancy.up);
+  if (!liquid) return liquid;
   const std::size_t i = scene.bodies.denseIndexUnchecked(buoyancy.body);
   buoyancy.up.normalize();
   if (buoyancy.volume <= 0.0) buoyancy.volume = shapesVolume(scene.bodies, i);

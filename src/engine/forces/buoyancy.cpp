@@ -16,15 +16,8 @@ Status ForceKind<Buoyancy>::validate(Buoyancy& buoyancy, const ParticleStore& pa
   if (!particle) return particle;
   if (!finitePositive(buoyancy.max_depth)) return Status::error("max_depth must be finite and > 0");
   if (!finiteNonNegative(buoyancy.volume)) return Status::error("volume must be finite and >= 0");
-  if (!finiteNonNegative(buoyancy.liquid_density)) {
-    return Status::error("liquid_density must be finite and >= 0");
-  }
-  if (!std::isfinite(buoyancy.surface_height)) {
-    return Status::error("surface_height is not finite");
-  }
-  if (!buoyancy.up.allFinite() || buoyancy.up.norm() < 1e-9) {
-    return Status::error("up must be a finite non-zero vector");
-  }
+  const Status liquid = checkLiquid(buoyancy.liquid_density, buoyancy.surface_height, buoyancy.up);
+  if (!liquid) return liquid;
   buoyancy.up.normalize();
   return Status::ok();
 }

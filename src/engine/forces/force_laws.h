@@ -1,9 +1,11 @@
 #pragma once
 // The force laws the force generators share, each written once: a spring's (particles' springs in
-// their dense runs, springs on bodies' points), drag's and buoyancy's (on particles and on bodies).
+// their dense runs, springs on bodies' points), drag's and buoyancy's (on particles and on bodies),
+// and the check of a buoyancy's liquid.
 
 #include <cmath>
 
+#include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/types.h"
 
 namespace mass_aggregate_sim {
@@ -45,6 +47,18 @@ inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Re
   if (length < kMinSpringLength) return false;
   return springForceFromLength(d, length, 1.0 / length, va, vb, stiffness, rest_length, damping,
                                pull_only, force);
+}
+
+// The liquid of a buoyancy: a density >= 0, a finite surface height, a non-zero up.
+inline Status checkLiquid(const Real density, const Real surface_height, const Vec3& up) {
+  if (!(std::isfinite(density) && density >= 0.0)) {
+    return Status::error("liquid_density must be finite and >= 0");
+  }
+  if (!std::isfinite(surface_height)) return Status::error("surface_height is not finite");
+  if (!up.allFinite() || up.norm() < 1e-9) {
+    return Status::error("up must be a finite non-zero vector");
+  }
+  return Status::ok();
 }
 
 // F = -(k1 |v| + k2 |v|^2) v/|v| = -(k1 + k2 |v|) v
