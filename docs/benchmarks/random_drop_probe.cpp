@@ -1,7 +1,8 @@
 // The random drop's deepest overlaps, looked at one by one (docs/BENCHMARKS.md, 2026-11-26).
 // Build and run from the repository root after scripts/bench.sh has built the engine:
 //   g++ -std=c++17 -O2 -I include -I bench/rigid -I /usr/include/eigen3 \
-//     docs/benchmarks/random_drop_probe.cpp bench/rigid/rigid_scenes.cpp -o /tmp/random_drop_probe \
+//     docs/benchmarks/random_drop_probe.cpp bench/rigid/rigid_scenes.cpp -o /tmp/random_drop_probe
+//     \
 //     -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
 //   /tmp/random_drop_probe 4 600              # substeps, frames (ITER=n: iterations)
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <vector>
+
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "rigid_scenes.h"
 using namespace mass_aggregate_sim;
@@ -17,59 +19,95 @@ int main(int argc, char** argv) {
   const int substeps = argc > 1 ? atoi(argv[1]) : 4;
   const int frames = argc > 2 ? atoi(argv[2]) : 600;
   const auto scene = bench::rigid::randomDrop(1000);
-  engine::WorldConfig config; config.dt = 1.0 / 60.0; config.gravity = scene.gravity;
+  engine::WorldConfig config;
+  config.dt = 1.0 / 60.0;
+  config.gravity = scene.gravity;
   engine::World world = *engine::World::create(config);
-  engine::BodySettings settings; settings.substeps = substeps; settings.sleep = false; if (getenv("ITER")) settings.iterations = atoi(getenv("ITER"));
+  engine::BodySettings settings;
+  settings.substeps = substeps;
+  settings.sleep = false;
+  if (getenv("ITER")) settings.iterations = atoi(getenv("ITER"));
   world.setBodySettings(settings);
-  engine::PlaneCollider ground; ground.normal = Vec3::UnitZ(); ground.offset = 0; ground.material = {0, 0.5};
+  engine::PlaneCollider ground;
+  ground.normal = Vec3::UnitZ();
+  ground.offset = 0;
+  ground.material = {0, 0.5};
   world.addCollider(ground);
   std::vector<engine::BodyId> ids;
   for (const auto& spec : scene.bodies) {
     engine::BodySpec body;
     body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
-    body.pose.position = spec.position; body.pose.rotation = spec.orientation;
-    engine::BodyShapeSpec shape; shape.geometry = engine::BoxShape{spec.half_extents}; shape.material = {spec.restitution, spec.friction};
+    body.pose.position = spec.position;
+    body.pose.rotation = spec.orientation;
+    engine::BodyShapeSpec shape;
+    shape.geometry = engine::BoxShape{spec.half_extents};
+    shape.material = {spec.restitution, spec.friction};
     body.shapes = {shape};
-    if (!spec.isFixed()) { body.mass = spec.mass; }
+    if (!spec.isFixed()) {
+      body.mass = spec.mass;
+    }
     ids.push_back(*world.addBody(body));
   }
   for (int f = 0; f < frames; ++f) {
     world.step();
     if (f % 60 == 59) {
-      double worst = 0; int n = 0;
-      for (const auto& c : world.bodyContacts()) for (const auto& p : c.points) { worst = std::max(worst, -p.separation); if (-p.separation > 0.01) ++n; }
-      std::printf("t %.0f s: deepest %.4f m, points deeper than 1 cm: %d\n", (f + 1) / 60.0, worst, n);
+      double worst = 0;
+      int n = 0;
+      for (const auto& c : world.bodyContacts())
+        for (const auto& p : c.points) {
+          worst = std::max(worst, -p.separation);
+          if (-p.separation > 0.01) ++n;
+        }
+      std::printf("t %.0f s: deepest %.4f m, points deeper than 1 cm: %d\n", (f + 1) / 60.0, worst,
+                  n);
     }
   }
-  struct Deep { double depth; engine::BodyContactReport c; Vec3 p; };
+  struct Deep {
+    double depth;
+    engine::BodyContactReport c;
+    Vec3 p;
+  };
   std::vector<Deep> deep;
-  for (const auto& c : world.bodyContacts()) for (const auto& p : c.points) if (-p.separation > 0.01) deep.push_back({-p.separation, c, p.position});
-  std::sort(deep.begin(), deep.end(), [](const Deep& a, const Deep& b) { return a.depth > b.depth; });
+  for (const auto& c : world.bodyContacts())
+    for (const auto& p : c.points)
+      if (-p.separation > 0.01) deep.push_back({-p.separation, c, p.position});
+  std::sort(deep.begin(), deep.end(),
+            [](const Deep& a, const Deep& b) { return a.depth > b.depth; });
   const auto& bodies = world.bodies();
   for (std::size_t k = 0; k < std::min<std::size_t>(8, deep.size()); ++k) {
     const auto& d = deep[k];
     const std::size_t a = *bodies.find(d.c.body);
-    const auto* shape = std::get_if<engine::BoxShape>(&bodies.shapes()[bodies.shapesOf(a)[0]].geometry);
-    std::printf("depth %.4f other %d normal (%.2f %.2f %.2f) at (%.2f %.2f %.2f); a half (%.3f %.3f %.3f) v %.3f w %.3f mass %.3f",
-                d.depth, (int)d.c.other, d.c.normal.x(), d.c.normal.y(), d.c.normal.z(), d.p.x(), d.p.y(), d.p.z(),
-                shape->half_extents.x(), shape->half_extents.y(), shape->half_extents.z(),
-                bodies.linearVelocity(a).norm(), bodies.angularVelocity(a).norm(), bodies.mass(a));
+    const auto* shape =
+        std::get_if<engine::BoxShape>(&bodies.shapes()[bodies.shapesOf(a)[0]].geometry);
+    std::printf(
+        "depth %.4f other %d normal (%.2f %.2f %.2f) at (%.2f %.2f %.2f); a half (%.3f %.3f %.3f) "
+        "v %.3f w %.3f mass %.3f",
+        d.depth, (int)d.c.other, d.c.normal.x(), d.c.normal.y(), d.c.normal.z(), d.p.x(), d.p.y(),
+        d.p.z(), shape->half_extents.x(), shape->half_extents.y(), shape->half_extents.z(),
+        bodies.linearVelocity(a).norm(), bodies.angularVelocity(a).norm(), bodies.mass(a));
     if (d.c.other == engine::BodyContactReport::Other::kBody) {
       const std::size_t b = *bodies.find(d.c.other_body);
-      const auto* sb = std::get_if<engine::BoxShape>(&bodies.shapes()[bodies.shapesOf(b)[0]].geometry);
-      std::printf("; b half (%.3f %.3f %.3f) type %d mass %.3f", sb->half_extents.x(), sb->half_extents.y(), sb->half_extents.z(), (int)bodies.type(b), bodies.mass(b));
+      const auto* sb =
+          std::get_if<engine::BoxShape>(&bodies.shapes()[bodies.shapesOf(b)[0]].geometry);
+      std::printf("; b half (%.3f %.3f %.3f) type %d mass %.3f", sb->half_extents.x(),
+                  sb->half_extents.y(), sb->half_extents.z(), (int)bodies.type(b), bodies.mass(b));
     }
     std::printf("\n");
     if (k == 0 && d.c.other == engine::BodyContactReport::Other::kBody) {
       const std::size_t b = *bodies.find(d.c.other_body);
-      const auto box = [&](std::size_t i) { return std::get<engine::BoxShape>(bodies.shapes()[bodies.shapesOf(i)[0]].geometry).half_extents; };
-      // Deepest vertex of one box inside the other: min over the other's faces of the distance inside.
+      const auto box = [&](std::size_t i) {
+        return std::get<engine::BoxShape>(bodies.shapes()[bodies.shapesOf(i)[0]].geometry)
+            .half_extents;
+      };
+      // Deepest vertex of one box inside the other: min over the other's faces of the distance
+      // inside.
       const auto deepest = [&](std::size_t i, std::size_t j) {
         const engine::Transform pi = bodies.pose(i), pj = bodies.pose(j);
         const Vec3 hi = box(i), hj = box(j);
         double best = -1;
         for (int c = 0; c < 8; ++c) {
-          const Vec3 corner((c & 1 ? 1 : -1) * hi.x(), (c & 2 ? 1 : -1) * hi.y(), (c & 4 ? 1 : -1) * hi.z());
+          const Vec3 corner((c & 1 ? 1 : -1) * hi.x(), (c & 2 ? 1 : -1) * hi.y(),
+                            (c & 4 ? 1 : -1) * hi.z());
           const Vec3 w = pi.apply(corner);
           const Vec3 l = pj.applyInverse(w);
           const Vec3 inside = hj - l.cwiseAbs();
@@ -77,27 +115,30 @@ int main(int argc, char** argv) {
         }
         return best;
       };
-      std::printf("  independent: deepest vertex of a in b %.4f, of b in a %.4f\n", deepest(a, b), deepest(b, a));
-      const std::size_t a0 = a, b0 = b; (void)a0; (void)b0;
+      std::printf("  independent: deepest vertex of a in b %.4f, of b in a %.4f\n", deepest(a, b),
+                  deepest(b, a));
       if (getenv("NOGRAVITY")) {
-        engine::WorldConfig c = world.config(); c.gravity.setZero(); world.setConfig(c);
-        for (std::size_t i = 0; i < bodies.size(); ++i) if (bodies.dynamic(i)) world.setBodyVelocity(bodies.idAt(i), Vec3::Zero(), Vec3::Zero());
+        engine::WorldConfig c = world.config();
+        c.gravity.setZero();
+        world.setConfig(c);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+          if (bodies.dynamic(i)) world.setBodyVelocity(bodies.idAt(i), Vec3::Zero(), Vec3::Zero());
       }
-      if (getenv("ALONE")) {
-        // Everything but the pair removed.
-        std::vector<engine::BodyId> others;
-        for (std::size_t i = 0; i < bodies.size(); ++i) if (bodies.idAt(i) != d.c.body && bodies.idAt(i) != d.c.other_body) others.push_back(bodies.idAt(i));
-        for (const auto id : others) world.removeBody(id);
-      }
-      const std::size_t a2 = *bodies.find(d.c.body), b2 = *bodies.find(d.c.other_body);
-      (void)a2; (void)b2;
       for (int extra = 0; extra < 120; ++extra) {
         world.step();
-        if (extra % 20 == 0) for (const auto& c : world.bodyContacts()) if (c.body == d.c.body && c.other_body == d.c.other_body) { double w = 0; for (const auto& p : c.points) w = std::max(w, -p.separation); std::printf("   step %d: %zu points deepest %.4f normal (%.2f %.2f %.2f)\n", extra, c.points.size(), w, c.normal.x(), c.normal.y(), c.normal.z()); }
+        if (extra % 20 == 0)
+          for (const auto& c : world.bodyContacts())
+            if (c.body == d.c.body && c.other_body == d.c.other_body) {
+              double w = 0;
+              for (const auto& p : c.points) w = std::max(w, -p.separation);
+              std::printf("   step %d: %zu points deepest %.4f normal (%.2f %.2f %.2f)\n", extra,
+                          c.points.size(), w, c.normal.x(), c.normal.y(), c.normal.z());
+            }
       }
       for (const auto& c : world.bodyContacts()) {
         if (!(c.body == d.c.body && c.other_body == d.c.other_body)) continue;
-        double w = 0; for (const auto& p : c.points) w = std::max(w, -p.separation);
+        double w = 0;
+        for (const auto& p : c.points) w = std::max(w, -p.separation);
         std::printf("  after 2 s more: %zu points, deepest %.4f\n", c.points.size(), w);
       }
     }
