@@ -150,6 +150,20 @@ TEST(BodyScenesTest, TheRopeHoldsTheBox) {
   EXPECT_LT(gap, 0.02);
 }
 
+TEST(BodyScenesTest, TheCrateHangsTheRaftFloatsAndTheBlockSinks) {
+  engine::World world = loadShipped("body_forces");
+  run(world, "body_forces", 20.0);
+  // The spring carries crate and bead: (20 + 1) 9.81 / 400 = 0.515 m beyond its 1.25 m, from the
+  // hook at z = 4 to the crate's top face; the crate is 0.5 m tall.
+  EXPECT_NEAR(centre(world, "crate").z(), 4.0 - 1.25 - 0.515 - 0.25, 0.01);
+  // Half the raft's volume under water: its centre at the surface (asleep within a centimetre).
+  EXPECT_NEAR(centre(world, "raft").z(), 0.0, 0.01);
+  EXPECT_NEAR(centre(world, "block").z(), -3.0 + 0.25, 0.01);
+  const engine::ParticleStore& particles = world.particles();
+  const Vec3 bead = particles.positions().col(*particles.find(*particles.findByName("bead")));
+  EXPECT_LT(bead.z(), centre(world, "crate").z() - 0.25 - 0.3);  // below it, the bungee taut
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim
