@@ -310,7 +310,7 @@ void SimNode::fillFrame(const Clock::time_point now) {
   stats.publish_cost = last_publish_cost_.load();
   stats.frame_cost = last_frame_cost_;
   stats.particles = world.particles().size();
-  stats.force_generators = world.generators().size();
+  stats.force_generators = world.generators().size() + world.bodyGenerators().size();
   stats.sustained_forces = sim_.sustainedForceCount();
   const BodySnapshot& bodies = frame.world.bodies;
   stats.bodies = bodies.ids.size();
@@ -367,7 +367,7 @@ void SimNode::fillFrame(const Clock::time_point now) {
   d.max_iterations = world.collisionSettings().max_iterations;
   d.particles = world.particles().size();
   d.max_particles = params_.limits.max_particles;
-  d.links = world.generators().size() + world.links().size();
+  d.links = world.generators().size() + world.bodyGenerators().size() + world.links().size();
   d.max_links = params_.limits.max_links;
   d.sustained_forces = sim_.sustainedForceCount();
   d.max_sustained_forces = params_.limits.max_sustained_forces;
@@ -401,8 +401,9 @@ void SimNode::run() {
       "scene '%s' from %s: %zu particles, %zu force generators, %zu bodies, %zu joints, %.1f "
       "Hz%s; scene hash %lu",
       scene_name_.c_str(), scene_source_.c_str(), sim_.world().particles().size(),
-      sim_.world().generators().size(), sim_.world().bodies().size(), sim_.world().joints().size(),
-      rate_, paused_ ? ", paused" : "", static_cast<unsigned long>(scene_hash_));
+      sim_.world().generators().size() + sim_.world().bodyGenerators().size(),
+      sim_.world().bodies().size(), sim_.world().joints().size(), rate_, paused_ ? ", paused" : "",
+      static_cast<unsigned long>(scene_hash_));
   // What an earlier launch or reconfigure left on the master is read as well (a bare rosrun
   // does not clear it): named here, so it is never silent.
   startup_line_ = std::string(startup) + "; " +

@@ -168,7 +168,8 @@ Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impuls
 }
 
 Result<GeneratorId> Simulation::addLink(const LinkRequest& request) {
-  const std::size_t links = world_.generators().size() + world_.links().size();
+  const std::size_t links =
+      world_.generators().size() + world_.bodyGenerators().size() + world_.links().size();
   if (links >= limits_.max_links) {
     return Status::error("already " + std::to_string(links) + " links and force generators, " +
                          "~max_links (" + std::to_string(limits_.max_links) + ")");

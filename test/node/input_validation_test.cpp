@@ -253,6 +253,26 @@ TEST(InputValidationTest, ValuesAtTheBoundsAreAccepted) {
   EXPECT_TRUE(sim.applyForce({{0, "ball"}, Vec3(kMaxForce, 0, 0), ForceMode::kOneStep, 0.0}));
 }
 
+TEST(InputValidationTest, ForcesOnBodiesCountAgainstTheLinkLimit) {
+  engine::World world = makeScene();
+  engine::BodySpec crate;
+  crate.shapes.push_back(engine::BodyShapeSpec{});
+  const engine::BodyId id = *world.addBody(crate);
+  engine::BodyDrag drag;
+  drag.body = id;
+  drag.k1 = 1.0;
+  ASSERT_TRUE(world.addBodyGenerator(drag));
+  SimulationLimits limits;
+  limits.max_links = 1;
+  Simulation sim(world, limits);
+  const Fingerprint before = fingerprint(sim);
+  const auto refused = sim.addLink(spring("ball", "post"));
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_NE(refused.message().find("already 1 links and force generators"), std::string::npos)
+      << refused.message();
+  EXPECT_TRUE(fingerprint(sim) == before);
+}
+
 TEST(InputValidationTest, LinkAndSustainedForceLimitsHold) {
   SimulationLimits limits;
   limits.max_links = 1;

@@ -168,6 +168,39 @@ TEST(PointSprings, ABungeePullsOnlyWhenStretched) {
   EXPECT_LT(world.bodies().linearVelocity(dense(world, id)).x(), 0.0);
 }
 
+TEST(PointSprings, ASpringTooStiffForTheSubstepsDivergesAndIsReported) {
+  // k = 1e6 N/m on 1 kg: omega h = 1000 / 240 = 4.2 at the default 4 substeps, beyond
+  // semi-implicit Euler's 2. The amplitude grows every substep until the body passes the runaway
+  // speed: a divergence event that names the body, and under kPause the world stops there.
+  WorldConfig c = config(0.0);
+  c.divergence_policy = DivergencePolicy::kPause;
+  World world(c);
+  const BodyId id = *world.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
+  ASSERT_TRUE(world.addBodyGenerator(PointSpring::between(
+      JointEnd::onBody(id), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
+  int steps = 0;
+  while (!world.paused() && steps < 120) {
+    world.step();
+    ++steps;
+  }
+  ASSERT_TRUE(world.paused()) << "no divergence reported in " << steps << " steps";
+  ASSERT_TRUE(world.lastDivergence().has_value());
+  EXPECT_EQ(world.lastDivergence()->body, id);
+  EXPECT_NE(world.lastDivergence()->what.find("runaway"), std::string::npos)
+      << world.lastDivergence()->what;
+  // At 32 substeps (omega h = 0.52) the same spring is stable and nothing is reported.
+  World fine(config(0.0));
+  BodySettings settings = fine.bodySettings();
+  settings.substeps = 32;
+  ASSERT_TRUE(fine.setBodySettings(settings));
+  const BodyId calm = *fine.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
+  ASSERT_TRUE(fine.addBodyGenerator(PointSpring::between(
+      JointEnd::onBody(calm), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
+  for (int step = 0; step < 120; ++step) fine.step();
+  EXPECT_EQ(fine.divergenceCount(), 0u);
+  EXPECT_LT(fine.bodies().position(dense(fine, calm)).norm(), 0.0101);
+}
+
 TEST(BodyDrag, AFallingBodyReachesItsTerminalSpeed) {
   // Linear drag k1 on 1 kg: v_t = m g / k1; quadratic k2: v_t = sqrt(m g / k2). Turning drag c
   // on a sphere (I = 2/5 m r^2): w(t) = w0 exp(-c t / I), 1 % at 1 s.
