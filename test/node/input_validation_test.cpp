@@ -273,6 +273,28 @@ TEST(InputValidationTest, ForcesOnBodiesCountAgainstTheLinkLimit) {
   EXPECT_TRUE(fingerprint(sim) == before);
 }
 
+TEST(InputValidationTest, ASpringOnABodyIsALinkToRemoveButDragIsNot) {
+  engine::World world = makeScene();
+  engine::BodySpec crate;
+  crate.shapes.push_back(engine::BodyShapeSpec{});
+  const engine::BodyId id = *world.addBody(crate);
+  const engine::GeneratorId spring = *world.addBodyGenerator(engine::PointSpring::between(
+      engine::JointEnd::onBody(id), engine::JointEnd::inWorld(Vec3(0, 0, 3)), 10.0));
+  engine::BodyDrag drag;
+  drag.body = id;
+  drag.k1 = 1.0;
+  const engine::GeneratorId drag_id = *world.addBodyGenerator(drag);
+  Simulation sim(world, SimulationLimits{});
+  const Fingerprint before = fingerprint(sim);
+  const auto refused = sim.removeLink(drag_id);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_NE(refused.message().find("no link with id"), std::string::npos) << refused.message();
+  EXPECT_TRUE(fingerprint(sim) == before);
+  ASSERT_TRUE(sim.removeLink(spring).isOk());
+  EXPECT_TRUE(sim.world().bodyGenerators().of<engine::PointSpring>().empty());
+  EXPECT_EQ(sim.world().bodyGenerators().of<engine::BodyDrag>().size(), 1u);
+}
+
 TEST(InputValidationTest, LinkAndSustainedForceLimitsHold) {
   SimulationLimits limits;
   limits.max_links = 1;
