@@ -378,6 +378,17 @@ class SceneBuilder {
     return ids;
   }
 
+  // The liquid and depth of a buoyancy on particles or on bodies (the kinds' defaults where left
+  // out).
+  template <typename Kind>
+  static void readBuoyancy(XmlRpcValue& force, const std::string& k, Kind& buoyancy) {
+    buoyancy.max_depth = realOr(force, k, "max_depth", buoyancy.max_depth);
+    buoyancy.volume = realOr(force, k, "volume", buoyancy.volume);
+    buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
+    buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
+    buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
+  }
+
   // One generator of the kind on each body of `bodies: [names]`.
   template <typename Kind>
   void addOnBodies(Kind generator, XmlRpcValue& force, const std::string& k) {
@@ -410,11 +421,7 @@ class SceneBuilder {
             force, k,
             {"type", "bodies", "max_depth", "volume", "liquid_density", "surface_height", "up"});
         engine::BodyBuoyancy buoyancy;
-        buoyancy.max_depth = realOr(force, k, "max_depth", buoyancy.max_depth);
-        buoyancy.volume = realOr(force, k, "volume", buoyancy.volume);
-        buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
-        buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
-        buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
+        readBuoyancy(force, k, buoyancy);
         addOnBodies(buoyancy, force, k);
       } else if (type == "drag") {
         checkKeys(force, k, {"type", "all", "particles", "k1", "k2"});
@@ -430,11 +437,7 @@ class SceneBuilder {
                   {"type", "all", "particles", "max_depth", "volume", "liquid_density",
                    "surface_height", "up"});
         engine::Buoyancy buoyancy;
-        buoyancy.max_depth = realOr(force, k, "max_depth", buoyancy.max_depth);
-        buoyancy.volume = realOr(force, k, "volume", buoyancy.volume);
-        buoyancy.liquid_density = realOr(force, k, "liquid_density", buoyancy.liquid_density);
-        buoyancy.surface_height = realOr(force, k, "surface_height", buoyancy.surface_height);
-        buoyancy.up = vec3Or(force, k, "up", buoyancy.up);
+        readBuoyancy(force, k, buoyancy);
         for (const auto id : readTargets(force, k)) {
           buoyancy.particle = id;
           checkLinkCount(k);

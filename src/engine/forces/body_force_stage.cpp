@@ -125,7 +125,7 @@ void applyBodyForces(StepContext& ctx) {
   ws.generator_force.assign(ws.first_particle, Vec3::Zero());
   ws.generator_torque.assign(ws.first_particle, Vec3::Zero());
   ParticleStore& particles = ctx.particles;
-  const bool reach = bodyForcesReachParticles(*ctx.body_generators);
+  const bool reach = ctx.body_forces_reach_particles;
   if (reach) {
     // The user's forces hold for the whole step; these change every substep.
     if (ctx.substep == 0) ws.user_particle_forces = particles.forces();

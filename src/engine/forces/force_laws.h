@@ -49,6 +49,11 @@ inline bool springForce(const Real* xa, const Real* xb, const Real* va, const Re
                                pull_only, force);
 }
 
+// A spring's pull along its line for an extension l - L: k (l - L), none for a slack bungee.
+inline Real springTension(const Real extension, const Real stiffness, const bool pull_only) {
+  return pull_only && extension <= 0.0 ? 0.0 : stiffness * extension;
+}
+
 // The liquid of a buoyancy: a density >= 0, a finite surface height, a non-zero up.
 inline Status checkLiquid(const Real density, const Real surface_height, const Vec3& up) {
   if (!(std::isfinite(density) && density >= 0.0)) {

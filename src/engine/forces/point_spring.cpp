@@ -1,25 +1,14 @@
 // The point spring kind (point_spring.h): validation, force and energy.
 #include "mass_aggregate_sim/engine/forces/point_spring.h"
 
-#include <string>
-
 #include "engine/core/checks.h"
 #include "engine/forces/body_force_stage.h"
 #include "engine/forces/force_laws.h"
+#include "engine/joints/joint_ends.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
-
-Status checkEnd(const JointEnd& end, const JointScene& scene, const char* name) {
-  if (end.isBody() && end.isParticle()) {
-    return Status::error(std::string(name) + ": an end is a body or a particle, not both");
-  }
-  if (!end.point.allFinite()) return Status::error(std::string(name) + ": point is not finite");
-  if (end.isBody()) return scene.bodies.checkReference(end.body, name);
-  if (end.isParticle()) return scene.particles.checkReference(end.particle, name);
-  return Status::ok();
-}
 
 bool still(const JointEnd& end, const JointScene& scene) {
   if (end.isBody()) {
@@ -35,8 +24,8 @@ bool still(const JointEnd& end, const JointScene& scene) {
 }  // namespace
 
 Status BodyForceKind<PointSpring>::validate(PointSpring& spring, const JointScene& scene) {
-  Status valid = checkEnd(spring.a, scene, "a");
-  if (valid) valid = checkEnd(spring.b, scene, "b");
+  Status valid = checkJointEnd(spring.a, scene, "a", false);
+  if (valid) valid = checkJointEnd(spring.b, scene, "b", false);
   if (!valid) return valid;
   if (!spring.a.isBody() && !spring.b.isBody()) {
     return Status::error(
@@ -90,7 +79,7 @@ DrawnSegment BodyForceKind<PointSpring>::drawn(const PointSpring& spring, const 
   const Vec3 a = scene.end(spring.a).position;
   const Vec3 b = scene.end(spring.b).position;
   const Real extension = (a - b).norm() - spring.rest_length;
-  const Real tension = spring.pull_only && extension <= 0.0 ? 0.0 : spring.stiffness * extension;
+  const Real tension = springTension(extension, spring.stiffness, spring.pull_only);
   return DrawnSegment{a, b, tension};
 }
 

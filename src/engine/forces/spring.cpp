@@ -38,7 +38,7 @@ DrawnSegment ForceKind<Spring>::drawn(const Spring& spring, const ParticleStore&
   const Vec3 b =
       spring.anchored() ? spring.anchor : Vec3(x.col(particles.denseIndexUnchecked(spring.b)));
   const Real extension = (a - b).norm() - spring.rest_length;
-  const Real tension = spring.pull_only && extension <= 0.0 ? 0.0 : spring.stiffness * extension;
+  const Real tension = springTension(extension, spring.stiffness, spring.pull_only);
   return DrawnSegment{a, b, tension};
 }
 

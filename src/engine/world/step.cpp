@@ -70,19 +70,21 @@ void refreshDampingFactors(const ParticleStore& particles, const Integrator inte
 
 StepContext World::beginStep() {
   const StabilityReport& report = stabilityReport();
+  const bool reach = bodyForcesReachParticles(body_generators_);
   substeps_used_ = report.substeps_used;
   if (!bodies_.empty()) substeps_used_ = std::max(substeps_used_, body_settings_.substeps);
   StepCaches& caches = *caches_;
   StepContext ctx(
       config_, collision_settings_, particles_, generators_, links_, colliders_, materials_,
       ForceScene{particles_, generators_, generators_version_, config_.gravity,
-                 has_external_force_ || bodyForcesReachParticles(body_generators_)},
+                 has_external_force_ || reach},
       *integration_, caches, *contacts_, *guard_, last_contact_stats_, dropped_this_step_);
   ctx.dt = config_.dt;
   ctx.substeps = substeps_used_;
   ctx.h = config_.dt / static_cast<Real>(substeps_used_);
   ctx.step = step_count_;
   ctx.time = time();
+  ctx.body_forces_reach_particles = reach;
   ctx.contacts_active = contactsActive();
   ctx.guard_energy = energyGuardApplies(ctx);
   // The guard reads the state the step ends in: the semi-implicit Euler pass sums it unless

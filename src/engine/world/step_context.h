@@ -64,6 +64,8 @@ class StepContext {
   BodyStore* bodies = nullptr;
   Joints* joints = nullptr;
   const BodyForceGenerators* body_generators = nullptr;
+  // A generator on bodies acts on a particle: the particles feel external forces every substep.
+  bool body_forces_reach_particles = false;
   const BodySettings* body_settings = nullptr;
   BodyWorkspace* body_ws = nullptr;
   // Changes whenever a collider is added or removed (the bodies' broadphase holds them).

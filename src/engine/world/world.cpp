@@ -97,17 +97,7 @@ Status World::removeParticle(const ParticleId id) {
                               }),
                kind.end());
   });
-  body_generators_.forEach([&](auto& kind) {
-    using Kind = typename std::decay_t<decltype(kind)>::value_type;
-    for (const auto& generator : kind) {
-      if (BodyForceKind<Kind>::refersTo(generator, id)) {
-        wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
-      }
-    }
-    eraseReferencing(kind, [](const Kind& generator, const ParticleId particle) {
-      return BodyForceKind<Kind>::refersTo(generator, particle);
-    });
-  });
+  removeBodyGeneratorsOf(id);
   materials_.forget(id);
   const Status removed = particles_.remove(id);
   contacts_->resolver.clearWarmStart();

@@ -9,6 +9,7 @@
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
 #include "engine/collision/narrowphase/any_shape.h"
+#include "engine/joints/joint_ends.h"
 #include "mass_aggregate_sim/engine/bodies/mass_properties.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 
@@ -51,16 +52,7 @@ Status World::removeBody(const BodyId id) {
   if (!dense) return Status::error("body: " + bodies_.describeInvalid(id));
   BodyWorkspace& ws = *body_ws_;
   wakeIsland(bodies_, ws, joints_, *dense);
-  body_generators_.forEach([&](auto& kind) {
-    using Kind = typename std::decay_t<decltype(kind)>::value_type;
-    const auto refers = [id](const Kind& generator) {
-      return BodyForceKind<Kind>::refersTo(generator, id);
-    };
-    for (const auto& generator : kind) {
-      if (refers(generator)) wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
-    }
-    kind.erase(std::remove_if(kind.begin(), kind.end(), refers), kind.end());
-  });
+  removeBodyGeneratorsOf(id);
   joints_.forEach([&](auto& kind) {
     for (const auto& joint : kind) {
       if (joint.a.body == id || joint.b.body == id) wakeJointEnds(joint.a, joint.b);
@@ -260,23 +252,9 @@ std::vector<BodyId> World::bodiesOverlappingBox(const Vec3& center, const Vec3& 
 // --- joints ---
 
 Status World::checkJointEnds(const JointEnd& a, const JointEnd& b, const bool turns) const {
-  const auto check = [&](const JointEnd& end, const char* name) -> Status {
-    if (end.isBody() && end.isParticle()) {
-      return Status::error(std::string(name) + ": an end is a body or a particle, not both");
-    }
-    if (!end.point.allFinite()) return Status::error(std::string(name) + ": point is not finite");
-    if (end.isBody()) return bodies_.checkReference(end.body, name);
-    if (end.isParticle()) {
-      if (turns) {
-        return Status::error(std::string(name) +
-                             ": a particle has no orientation for a joint that holds rotation");
-      }
-      return particles_.checkReference(end.particle, name);
-    }
-    return Status::ok();
-  };
-  Status valid = check(a, "a");
-  if (valid) valid = check(b, "b");
+  const JointScene scene{bodies_, particles_};
+  Status valid = checkJointEnd(a, scene, "a", turns);
+  if (valid) valid = checkJointEnd(b, scene, "b", turns);
   if (!valid) return valid;
   if (!a.isBody() && !b.isBody()) {
     return Status::error(

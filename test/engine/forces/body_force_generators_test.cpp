@@ -176,8 +176,8 @@ TEST(PointSprings, ASpringTooStiffForTheSubstepsDivergesAndIsReported) {
   c.divergence_policy = DivergencePolicy::kPause;
   World world(c);
   const BodyId id = *world.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
-  ASSERT_TRUE(world.addBodyGenerator(PointSpring::between(
-      JointEnd::onBody(id), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
+  ASSERT_TRUE(world.addBodyGenerator(
+      PointSpring::between(JointEnd::onBody(id), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
   int steps = 0;
   while (!world.paused() && steps < 120) {
     world.step();
@@ -194,8 +194,8 @@ TEST(PointSprings, ASpringTooStiffForTheSubstepsDivergesAndIsReported) {
   settings.substeps = 32;
   ASSERT_TRUE(fine.setBodySettings(settings));
   const BodyId calm = *fine.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
-  ASSERT_TRUE(fine.addBodyGenerator(PointSpring::between(
-      JointEnd::onBody(calm), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
+  ASSERT_TRUE(fine.addBodyGenerator(
+      PointSpring::between(JointEnd::onBody(calm), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
   for (int step = 0; step < 120; ++step) fine.step();
   EXPECT_EQ(fine.divergenceCount(), 0u);
   EXPECT_LT(fine.bodies().position(dense(fine, calm)).norm(), 0.0101);

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "mass_aggregate_sim/engine/bodies/body_contact_report.h"
@@ -247,6 +249,10 @@ class World {
   Status checkJointEnds(const JointEnd& a, const JointEnd& b, bool turns) const;
   void wakeJointEnds(const JointEnd& a, const JointEnd& b);
   void wakeBodies(const std::vector<BodyId>& bodies);
+  // Removes the force generators on bodies that act on `id` (a body or a particle), waking the
+  // bodies they acted on.
+  template <typename Id>
+  void removeBodyGeneratorsOf(Id id);
   Result<ColliderId> nextColliderId();
   // The forces, the springs' layout or the state changed: every force cache and the energy
   // guard's reference are stale (position Verlet's history is kept per particle).
@@ -341,6 +347,20 @@ Result<GeneratorId> World::addBodyGenerator(Kind generator) {
   wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
   stateChanged();
   return generator.id;
+}
+
+template <typename Id>
+void World::removeBodyGeneratorsOf(const Id id) {
+  body_generators_.forEach([&](auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    const auto refers = [id](const Kind& generator) {
+      return BodyForceKind<Kind>::refersTo(generator, id);
+    };
+    for (const auto& generator : kind) {
+      if (refers(generator)) wakeBodies(BodyForceKind<Kind>::bodiesOf(generator));
+    }
+    kind.erase(std::remove_if(kind.begin(), kind.end(), refers), kind.end());
+  });
 }
 
 template <typename Kind>
