@@ -38,9 +38,11 @@ std::optional<ShapeContact> ShapeKind<BoxCollider>::contact(const BoxCollider& b
   const Vec3& h = box.half_extents;
   const Vec3 clamped = local.cwiseMax(-h).cwiseMin(h);
   const Vec3 outside = local - clamped;
-  const Real outside_distance = outside.norm();
-  if (outside_distance > 0.0) {
+  const Real outside_squared = outside.squaredNorm();
+  if (outside_squared > 0.0) {
     // Centre outside the box: the nearest surface point is the clamped one (face, edge or corner).
+    if (certainlyBeyond(outside_squared, r + margin)) return std::nullopt;
+    const Real outside_distance = std::sqrt(outside_squared);
     const Real penetration = r - outside_distance;
     if (!(penetration > -margin)) return std::nullopt;
     return ShapeContact{rotation * (outside / outside_distance), penetration};

@@ -9,7 +9,9 @@ std::optional<ShapeContact> sphereAgainstBall(const Vec3& x, const Real r, const
                                               const Real radius, const Real margin) {
   constexpr Real kTinyLength = 1e-12;
   const Vec3 d = x - center;
-  const Real distance = d.norm();
+  const Real squared_distance = d.squaredNorm();
+  if (certainlyBeyond(squared_distance, r + radius + margin)) return std::nullopt;
+  const Real distance = std::sqrt(squared_distance);
   const Real penetration = r + radius - distance;
   if (!(penetration > -margin)) return std::nullopt;
   // Concentric: any direction separates them; pick up.

@@ -76,6 +76,44 @@ TEST(SphereVsBox, OrientedBoxUsesItsOwnAxes) {
                 Vec3::UnitX(), 0.05);
 }
 
+// The box and ball tests reject far spheres from the squared distance (certainlyBeyond); at the
+// edge of their reach they must decide as the test on the distance itself does, to the bit.
+TEST(SphereVsShapes, TheSquaredDistanceRejectsOnlyWhatTheDistanceTestRejects) {
+  BoxCollider box;
+  box.center = Vec3::Zero();
+  box.half_extents = Vec3(0.5, 0.25, 0.75);
+  const Vec3 corner_direction = Vec3(1.0, 2.0, 3.0).normalized();
+  const Vec3 box_corner = box.half_extents;
+  const Vec3 ball_center(0.3, -0.2, 0.1);
+  const Real ball_radius = 0.7;
+  int near_edge = 0;
+  for (const Real r : {0.025, 0.1, 0.3}) {
+    for (const Real margin : {0.0, 1e-4, 0.02}) {
+      for (int k = -2000; k <= 2000; ++k) {
+        const Real distance = (r + margin) * (1.0 + k * 1e-16);
+        const Vec3 x = box_corner + distance * corner_direction;
+        const Vec3 outside = x - x.cwiseMax(-box.half_extents).cwiseMin(box.half_extents);
+        const bool box_expected = r - outside.norm() > -margin;
+        EXPECT_EQ(ShapeKind<BoxCollider>::contact(box, x, r, margin).has_value(), box_expected)
+            << r << " " << margin << " " << k;
+
+        const Vec3 y = ball_center + (ball_radius + distance) * corner_direction;
+        const bool ball_expected = r + ball_radius - (y - ball_center).norm() > -margin;
+        EXPECT_EQ(sphereAgainstBall(y, r, ball_center, ball_radius, margin).has_value(),
+                  ball_expected)
+            << r << " " << margin << " " << k;
+        near_edge += (box_expected ? 1 : 0) + (ball_expected ? 1 : 0);
+      }
+    }
+  }
+  // Both answers occur near the edge (the sweep straddles it).
+  EXPECT_GT(near_edge, 0);
+  EXPECT_LT(near_edge, 2 * 9 * 4001);
+  // Far away: none, without reaching the square root.
+  EXPECT_FALSE(ShapeKind<BoxCollider>::contact(box, Vec3(10, 10, 10), 0.1, 0.01));
+  EXPECT_FALSE(sphereAgainstBall(Vec3(10, 10, 10), 0.1, ball_center, ball_radius, 0.01));
+}
+
 TEST(SphereVsCapsule, SideEndCapsAndAxis) {
   CapsuleCollider capsule{Vec3(0, 0, 0), Vec3(0, 0, 2), 0.5, Material{}};
   expectContact(ShapeKind<CapsuleCollider>::contact(capsule, Vec3(0.55, 0, 1.0), 0.1, 0.0),
