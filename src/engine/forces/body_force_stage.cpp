@@ -44,6 +44,17 @@ ForceEnd BodyForceScene::end(const JointEnd& end) const {
   return out;
 }
 
+Real BodyForceScene::mobility(const JointEnd& end) const {
+  if (end.isParticle()) {
+    const std::size_t p = particles_.denseIndexUnchecked(end.particle);
+    return particles_.inverseMasses()[static_cast<Eigen::Index>(p)];
+  }
+  if (!end.isBody()) return 0.0;
+  const std::size_t i = bodies_.denseIndexUnchecked(end.body);
+  const Vec3 r = bodies_.massFrame(i).inverse().apply(end.point);
+  return bodies_.inverseMass(i) + r.squaredNorm() * bodies_.inversePrincipalInertia(i).maxCoeff();
+}
+
 ForceEnd BodyForceScene::centre(const BodyId body) const {
   ForceEnd out;
   const std::size_t i = bodies_.denseIndexUnchecked(body);

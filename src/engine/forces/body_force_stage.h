@@ -26,6 +26,15 @@ struct ForceEnd {
   std::int64_t particle = -1;     // the dense index of a particle end
 };
 
+// A spring between generator ends as the stability analysis sees it (stability.h): its stiffness
+// and, per end, the most inverse mass the end shows along any line (BodyForceScene::mobility).
+struct BodyStiffnessTerm {
+  GeneratorId id = 0;
+  Real stiffness = 0.0;
+  Real mobility[2] = {0.0, 0.0};
+  std::int64_t particle[2] = {-1, -1};  // the dense index of a particle end
+};
+
 class BodyForceScene {
  public:
   // With `ws`, the bodies as the step has moved them so far (its solver bodies); without, as
@@ -35,6 +44,10 @@ class BodyForceScene {
       : bodies_(bodies), particles_(particles), ws_(ws), gravity_magnitude_(gravity_magnitude) {}
 
   ForceEnd end(const JointEnd& end) const;
+  // The largest 1/m_eff a force along any line n at the end meets: 1/m + (r x n).I^-1 (r x n),
+  // at most 1/m + |r|^2 / I_min for a point r from a body's centre of mass (whatever the body's
+  // turn); 1/m for a particle; 0 for the world or a body that never moves.
+  Real mobility(const JointEnd& end) const;
   // A body's centre of mass, as an end.
   ForceEnd centre(BodyId body) const;
   Vec3 angularVelocity(BodyId body) const;

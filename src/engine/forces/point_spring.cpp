@@ -96,5 +96,21 @@ Real BodyForceKind<PointSpring>::energy(const std::vector<PointSpring>& springs,
   return energy;
 }
 
+void BodyForceKind<PointSpring>::stiffness(const std::vector<PointSpring>& springs,
+                                           const BodyForceScene& scene,
+                                           std::vector<BodyStiffnessTerm>& terms) {
+  for (const PointSpring& spring : springs) {
+    BodyStiffnessTerm term;
+    term.id = spring.id;
+    term.stiffness = spring.stiffness;
+    const JointEnd* ends[2] = {&spring.a, &spring.b};
+    for (int e = 0; e < 2; ++e) {
+      term.mobility[e] = scene.mobility(*ends[e]);
+      term.particle[e] = scene.end(*ends[e]).particle;
+    }
+    terms.push_back(term);
+  }
+}
+
 }  // namespace engine
 }  // namespace mass_aggregate_sim

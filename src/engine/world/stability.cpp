@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "engine/forces/body_force_stage.h"
 #include "engine/forces/force_evaluation.h"
 
 namespace mass_aggregate_sim {
@@ -15,6 +16,37 @@ constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 constexpr int kMaxSubsteps = 1000;
 
 constexpr std::size_t kAnchor = StiffnessTerm::kAnchorEnd;
+
+// The fewest s with dt / s < h* (0: none up to kMaxSubsteps).
+int fewestSubsteps(const Real dt, const Real largest_substep) {
+  if (!(largest_substep > 0.0)) return 0;  // also NaN, from an omega that overflowed
+  if (std::isinf(largest_substep)) return 1;
+  const Real needed = std::floor(dt / largest_substep) + 1.0;
+  return needed <= kMaxSubsteps ? static_cast<int>(needed) : 0;
+}
+
+// Completes a report whose worst spring is set (generator, omega, coupled_omega, omega_h, limit)
+// from that spring's largest stable substep and the one that keeps the auto_substep margin.
+void finishReport(StabilityReport& report, const char* what, const char* integrator, const Real dt,
+                  const int substeps, const Real stable_substep, const Real margin_substep) {
+  const Real h = dt / static_cast<Real>(substeps);
+  report.substeps_with_margin = fewestSubsteps(dt, margin_substep);
+  report.stable = stable_substep > 0.0 && h / stable_substep < 1.0;
+  report.stable_dt = stable_substep * static_cast<Real>(substeps);
+  report.substeps_needed = fewestSubsteps(dt, stable_substep);
+  if (report.stable) return;
+  char text[360];
+  std::snprintf(text, sizeof(text),
+                "%s %u is unstable with %s: omega*h = %.4g (omega = %.4g rad/s, coupled "
+                "%.4g rad/s, h = %.4g s) exceeds the limit %.4g; stable for dt < %.4g s with "
+                "%d substeps%s",
+                what, static_cast<unsigned>(report.generator), integrator, report.omega_h,
+                report.omega, report.coupled_omega, h, report.limit, report.stable_dt, substeps,
+                report.substeps_needed > 0
+                    ? (", or with " + std::to_string(report.substeps_needed) + " substeps").c_str()
+                    : ", and no substep count up to 1000 makes it stable");
+  report.message = text;
+}
 
 }  // namespace
 
@@ -160,35 +192,77 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
     }
   }
   if (report.generator == 0) return report;
-
-  // the fewest s with dt / s < h* (0: none up to kMaxSubsteps)
-  const auto fewest_substeps = [dt](const Real largest_substep) {
-    if (!(largest_substep > 0.0)) return 0;  // also NaN, from an omega that overflowed
-    if (std::isinf(largest_substep)) return 1;
-    const Real needed = std::floor(dt / largest_substep) + 1.0;
-    return needed <= kMaxSubsteps ? static_cast<int>(needed) : 0;
-  };
-  report.substeps_with_margin = fewest_substeps(
-      largestStableSubstep(integrator, worst_omega, worst_damping, kAutoSubstepMargin));
-
-  report.stable = worst_ratio < 1.0;
-  report.stable_dt = worst_stable_substep * static_cast<Real>(substeps);
-  report.substeps_needed = fewest_substeps(worst_stable_substep);
-  if (!report.stable) {
-    char text[320];
-    std::snprintf(
-        text, sizeof(text),
-        "spring %u is unstable with %s: omega*h = %.4g (omega = %.4g rad/s, coupled "
-        "%.4g rad/s, h = %.4g s) exceeds the limit %.4g; stable for dt < %.4g s with "
-        "%d substeps%s",
-        static_cast<unsigned>(report.generator), integratorName(integrator), report.omega_h,
-        report.omega, report.coupled_omega, h, report.limit, report.stable_dt, substeps,
-        report.substeps_needed > 0
-            ? (", or with " + std::to_string(report.substeps_needed) + " substeps").c_str()
-            : ", and no substep count up to 1000 makes it stable");
-    report.message = text;
-  }
+  finishReport(report, "spring", integratorName(integrator), dt, substeps, worst_stable_substep,
+               largestStableSubstep(integrator, worst_omega, worst_damping, kAutoSubstepMargin));
   return report;
+}
+
+StabilityReport analysePointSpringStability(const BodyForceGenerators& generators,
+                                            const BodyStore& bodies, const ParticleStore& particles,
+                                            const Integrator particle_integrator, const Real dt,
+                                            const int substeps) {
+  StabilityReport report;
+  report.substeps_used = substeps;
+  std::vector<BodyStiffnessTerm> terms;
+  const BodyForceScene scene(bodies, particles, nullptr, 0.0);
+  generators.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    BodyForceKind<Kind>::stiffness(kind, scene, terms);
+  });
+  const auto damping = particles.dampings();
+  const Real h = dt / static_cast<Real>(substeps);
+  Real worst_stable_substep = kInfinity;
+  Real worst_margin_substep = kInfinity;
+  for (const BodyStiffnessTerm& t : terms) {
+    const Real mobility = t.mobility[0] + t.mobility[1];
+    if (t.stiffness <= 0.0 || mobility <= 0.0) continue;  // no spring, or neither end moves
+    const Real omega = std::sqrt(t.stiffness * mobility);
+    Real stable_substep = kInfinity;
+    Real margin_substep = kInfinity;
+    Integrator binding = Integrator::kSemiImplicitEuler;
+    Real binding_damping = 1.0;
+    for (int e = 0; e < 2; ++e) {
+      if (t.mobility[e] <= 0.0) continue;
+      const bool particle = t.particle[e] >= 0;
+      const Integrator integrator = particle ? particle_integrator : Integrator::kSemiImplicitEuler;
+      const Real d = particle ? damping[static_cast<Eigen::Index>(t.particle[e])] : 1.0;
+      const Real substep = largestStableSubstep(integrator, omega, d);
+      if (substep <= stable_substep) {
+        stable_substep = substep;
+        binding = integrator;
+        binding_damping = d;
+      }
+      margin_substep =
+          std::min(margin_substep, largestStableSubstep(integrator, omega, d, kAutoSubstepMargin));
+    }
+    if (report.generator != 0 && !(stable_substep < worst_stable_substep)) continue;
+    worst_stable_substep = stable_substep;
+    worst_margin_substep = margin_substep;
+    report.generator = t.id;
+    report.omega = omega;
+    report.coupled_omega = omega;
+    report.omega_h = omega * h;
+    report.limit = stabilityLimit(binding, binding_damping, h);
+  }
+  if (report.generator == 0) return report;
+  const std::string integrator = std::string(integratorName(Integrator::kSemiImplicitEuler)) +
+                                 " (bodies), " + integratorName(particle_integrator) +
+                                 " (particles)";
+  finishReport(report, "point spring", integrator.c_str(), dt, substeps, worst_stable_substep,
+               worst_margin_substep);
+  return report;
+}
+
+StabilityReport bindingReport(const StabilityReport& a, const StabilityReport& b) {
+  if (b.generator == 0) return a;
+  if (a.generator == 0) return b;
+  StabilityReport out = b.stable_dt < a.stable_dt ? b : a;
+  out.stable = a.stable && b.stable;
+  if (out.message.empty()) out.message = a.stable ? b.message : a.message;
+  const auto most = [](const int x, const int y) { return x == 0 || y == 0 ? 0 : std::max(x, y); };
+  out.substeps_needed = most(a.substeps_needed, b.substeps_needed);
+  out.substeps_with_margin = most(a.substeps_with_margin, b.substeps_with_margin);
+  return out;
 }
 
 }  // namespace engine

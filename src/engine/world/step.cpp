@@ -189,9 +189,17 @@ const StabilityReport& World::stabilityReport() const {
     cache.uncounted_work = own || generatorsDoUncountedWork(generators_);
     cache.valid = true;
   }
+  StabilityReport* binding = &cache.report;
+  if (!body_generators_.empty()) {
+    const int body_substeps = std::max(config_.substeps, body_settings_.substeps);
+    cache.with_bodies = bindingReport(
+        cache.report, analysePointSpringStability(body_generators_, bodies_, particles_,
+                                                  config_.integrator, config_.dt, body_substeps));
+    binding = &cache.with_bodies;
+  }
   // `stable` stays about config().substeps (the warning); substeps_used is what step() takes.
   // auto_substep keeps the kAutoSubstepMargin when 1000 substeps can, else just stability.
-  StabilityReport& report = cache.report;
+  StabilityReport& report = *binding;
   const int wanted =
       report.substeps_with_margin > 0 ? report.substeps_with_margin : report.substeps_needed;
   const bool raise = config_.auto_substep && wanted > config_.substeps;

@@ -42,7 +42,10 @@ struct StabilityCache {
   };
   bool valid = false;
   Inputs inputs;
-  StabilityReport report;
+  StabilityReport report;  // the particles' springs (what the energy guard allows for)
+  // With springs on bodies: the binding one of report and theirs (World::stabilityReport()),
+  // taken again every time (it depends on the bodies, whose masses it reads).
+  StabilityReport with_bodies;
   // Per-particle accelerations or a generator's uncounted work add work the energy omits.
   bool uncounted_work = false;
   Real movable_mass = 0.0;

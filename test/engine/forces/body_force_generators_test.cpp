@@ -4,6 +4,7 @@
 // with their bodies and particles, and keep the bodies they join awake.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -199,6 +200,72 @@ TEST(PointSprings, ASpringTooStiffForTheSubstepsDivergesAndIsReported) {
   for (int step = 0; step < 120; ++step) fine.step();
   EXPECT_EQ(fine.divergenceCount(), 0u);
   EXPECT_LT(fine.bodies().position(dense(fine, calm)).norm(), 0.0101);
+}
+
+TEST(PointSprings, TheStabilityReportNamesASpringTooStiffForTheBodiesSubsteps) {
+  // The spring of the test above: omega = sqrt(k / m) = 1000 rad/s at the centre of mass, so
+  // omega h = 4.17 at 4 substeps of 1/60 s, beyond 2; stable from floor(dt / (2 / omega)) + 1 = 9
+  // substeps.
+  World world(config(0.0));
+  const BodyId id = *world.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
+  const GeneratorId stiff = *world.addBodyGenerator(
+      PointSpring::between(JointEnd::onBody(id), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0));
+  const StabilityReport& report = world.stabilityReport();
+  EXPECT_FALSE(report.stable);
+  EXPECT_EQ(report.generator, stiff);
+  EXPECT_NEAR(report.omega, 1000.0, 1e-9);
+  EXPECT_NEAR(report.omega_h, 1000.0 / 240.0, 1e-9);
+  EXPECT_EQ(report.limit, 2.0);
+  EXPECT_EQ(report.substeps_needed, 9);
+  EXPECT_NE(report.message.find("point spring"), std::string::npos) << report.message;
+
+  // Off the centre of mass the body turns too: 1/m_eff along any line is at most
+  // 1/m + |r|^2 / I_min, and that bound is the one reported.
+  World turning(config(0.0));
+  const BodyId plank = *turning.addBody(body(box(Vec3(0.5, 0.25, 0.1)), 2.0, Vec3::Zero()));
+  const Vec3 corner(0.5, 0.25, 0.1);
+  ASSERT_TRUE(turning.addBodyGenerator(PointSpring::between(
+      JointEnd::onBody(plank, corner), JointEnd::inWorld(Vec3(1.0, 1.0, 1.0)), 5e4, 0.5)));
+  const std::size_t i = dense(turning, plank);
+  const Real mobility =
+      0.5 + corner.squaredNorm() / turning.bodies().principalInertia(i).minCoeff();
+  EXPECT_NEAR(turning.stabilityReport().omega, std::sqrt(5e4 * mobility), 1e-9);
+
+  // A particle at the other end adds its 1/m; a weak spring is stable and says nothing.
+  World mixed(config(0.0));
+  const BodyId ball = *mixed.addBody(body(sphere(0.1), 1.0, Vec3::Zero()));
+  ParticleSpec particle;
+  particle.position = Vec3(1.0, 0.0, 0.0);
+  particle.inverse_mass = 2.0;
+  const ParticleId p = *mixed.addParticle(particle);
+  ASSERT_TRUE(mixed.addBodyGenerator(
+      PointSpring::between(JointEnd::onBody(ball), JointEnd::atParticle(p), 50.0, 1.0)));
+  EXPECT_TRUE(mixed.stabilityReport().stable) << mixed.stabilityReport().message;
+  EXPECT_NEAR(mixed.stabilityReport().omega, std::sqrt(50.0 * 3.0), 1e-12);
+  EXPECT_TRUE(mixed.stabilityReport().message.empty());
+}
+
+TEST(PointSprings, AutoSubstepTakesTheSubstepsAStiffSpringOnABodyNeeds) {
+  // With auto_substep the world steps the stiff spring above with the substeps that keep it
+  // within the margin, and nothing runs away (without its spring in the report it diverged).
+  WorldConfig c = config(0.0);
+  c.auto_substep = true;
+  World world(c);
+  const BodyId id = *world.addBody(body(sphere(0.1), 1.0, Vec3(0.01, 0.0, 0.0)));
+  ASSERT_TRUE(world.addBodyGenerator(
+      PointSpring::between(JointEnd::onBody(id), JointEnd::inWorld(Vec3::Zero()), 1e6, 0.0)));
+  Real farthest = 0.0;
+  for (int step = 0; step < 120; ++step) {
+    world.step();
+    farthest = std::max(farthest, world.bodies().position(dense(world, id)).norm());
+  }
+  EXPECT_EQ(world.divergenceCount(), 0u);
+  EXPECT_EQ(world.substepsUsed(), world.stabilityReport().substeps_with_margin);
+  EXPECT_EQ(world.substepsUsed(), 10);  // omega h <= 0.9 * 2: floor(dt omega / 1.8) + 1
+  // Semi-implicit Euler keeps x^2 - h x v + v^2 / omega^2: from rest at x0 it swings out to at most
+  // x0 / sqrt(1 - (omega h / 2)^2), 1.8 x0 at omega h = 1000 / 600.
+  const Real omega_h = 1000.0 / 600.0;
+  EXPECT_LT(farthest, 0.01 / std::sqrt(1.0 - 0.25 * omega_h * omega_h) * (1.0 + 1e-6));
 }
 
 TEST(BodyDrag, AFallingBodyReachesItsTerminalSpeed) {

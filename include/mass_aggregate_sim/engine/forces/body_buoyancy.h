@@ -31,6 +31,8 @@ struct BodyForceKind<BodyBuoyancy> {
   static bool reachesParticle(const BodyBuoyancy& buoyancy) { return false; }
   static void accumulate(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene,
                          BodyForceSums& sums);
+  static void stiffness(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene,
+                        std::vector<BodyStiffnessTerm>& terms) {}
   static Real energy(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene) {
     return 0.0;
   }

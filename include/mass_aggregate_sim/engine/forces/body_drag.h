@@ -27,6 +27,8 @@ struct BodyForceKind<BodyDrag> {
   static bool reachesParticle(const BodyDrag& drag) { return false; }
   static void accumulate(const std::vector<BodyDrag>& drags, const BodyForceScene& scene,
                          BodyForceSums& sums);
+  static void stiffness(const std::vector<BodyDrag>& drags, const BodyForceScene& scene,
+                        std::vector<BodyStiffnessTerm>& terms) {}
   static Real energy(const std::vector<BodyDrag>& drags, const BodyForceScene& scene) {
     return 0.0;
   }

@@ -10,6 +10,7 @@ namespace mass_aggregate_sim {
 namespace engine {
 
 class BodyForceScene;
+struct BodyStiffnessTerm;
 class BodyForceSums;
 
 // What the engine knows of a kind K of force generator that acts on bodies (a point of a body,
@@ -28,6 +29,8 @@ class BodyForceSums;
 //   reachesParticle(k)           whether an end is a particle
 //   accumulate(ks, scene, sums)  adds each generator's force at the state of the scene
 //   energy(ks, scene)            their elastic energy at the state of the scene
+//   stiffness(ks, scene, terms)  a BodyStiffnessTerm per spring, for the stability analysis
+//                                (stability.h); nothing for a kind without stiffness
 // They act as the particle kinds do, with the law written once (force_laws.h); they are evaluated
 // once per substep at its start (bodies are integrated by semi-implicit Euler, which reads the
 // forces there), and a particle at one end feels that force, constant over the substep, as an

@@ -3,8 +3,10 @@
 #include <limits>
 #include <string>
 
+#include "mass_aggregate_sim/engine/bodies/body_store.h"
 #include "mass_aggregate_sim/engine/core/particle_store.h"
 #include "mass_aggregate_sim/engine/core/types.h"
+#include "mass_aggregate_sim/engine/forces/body_force_generators.h"
 #include "mass_aggregate_sim/engine/forces/force_generators.h"
 #include "mass_aggregate_sim/engine/integrators/integrator.h"
 
@@ -93,6 +95,19 @@ struct StabilityReport {
 // Analyses the scene for a step dt split into substeps.
 StabilityReport analyseStability(const ForceGenerators& generators, const ParticleStore& particles,
                                  Integrator integrator, Real dt, int substeps);
+
+// The same for the springs on bodies (PointSpring), each alone (no coupled bound), with
+// omega = sqrt(k (g_a + g_b)) and g an end's largest 1/m_eff along any line (1/m + |r|^2 / I_min
+// at a point r from a body's centre of mass: a bound whatever the body's turn). A body end moves
+// under semi-implicit Euler (limit 2), a particle end under the particles' integrator; the
+// tighter limit of the two ends holds. substeps: those the bodies step with.
+StabilityReport analysePointSpringStability(const BodyForceGenerators& generators,
+                                            const BodyStore& bodies, const ParticleStore& particles,
+                                            Integrator particle_integrator, Real dt, int substeps);
+
+// The binding one of two reports on the same dt: the smaller stable dt (its spring, omega and
+// message), unstable if either is, and the most substeps either needs (0, none up to 1000, wins).
+StabilityReport bindingReport(const StabilityReport& a, const StabilityReport& b);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -227,6 +227,7 @@ class World {
   // --- stability guard (stability.h, WorldConfig::auto_substep, divergence_policy) ---
   // The stiffest spring against the integrator's limit at the current dt and substeps; kept up to
   // date with the scene. !stable is the warning: it names the spring, its omega*h and stable dt.
+  // Springs on bodies count (analysePointSpringStability), against the bodies' substeps.
   const StabilityReport& stabilityReport() const;
   // Substeps the last step took (auto_substep can raise config().substeps).
   int substepsUsed() const { return substeps_used_; }
