@@ -213,6 +213,7 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
   const Real h = dt / static_cast<Real>(substeps);
   Real worst_stable_substep = kInfinity;
   Real worst_margin_substep = kInfinity;
+  bool worst_at_particle = false;
   for (const BodyStiffnessTerm& t : terms) {
     const Real mobility = t.mobility[0] + t.mobility[1];
     if (t.stiffness <= 0.0 || mobility <= 0.0) continue;  // no spring, or neither end moves
@@ -221,6 +222,7 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
     Real margin_substep = kInfinity;
     Integrator binding = Integrator::kSemiImplicitEuler;
     Real binding_damping = 1.0;
+    bool binding_particle = false;
     for (int e = 0; e < 2; ++e) {
       if (t.mobility[e] <= 0.0) continue;
       const bool particle = t.particle[e] >= 0;
@@ -231,6 +233,7 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
         stable_substep = substep;
         binding = integrator;
         binding_damping = d;
+        binding_particle = particle;
       }
       margin_substep =
           std::min(margin_substep, largestStableSubstep(integrator, omega, d, kAutoSubstepMargin));
@@ -243,11 +246,13 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
     report.coupled_omega = omega;
     report.omega_h = omega * h;
     report.limit = stabilityLimit(binding, binding_damping, h);
+    worst_at_particle = binding_particle;
   }
   if (report.generator == 0) return report;
-  const std::string integrator = std::string(integratorName(Integrator::kSemiImplicitEuler)) +
-                                 " (bodies), " + integratorName(particle_integrator) +
-                                 " (particles)";
+  const std::string integrator =
+      worst_at_particle ? std::string(integratorName(particle_integrator)) + " (its particle end)"
+                        : std::string(integratorName(Integrator::kSemiImplicitEuler)) +
+                              " (the bodies' integrator)";
   finishReport(report, "point spring", integrator.c_str(), dt, substeps, worst_stable_substep,
                worst_margin_substep);
   return report;
