@@ -28,7 +28,8 @@ from dynamic_reconfigure.srv import Reconfigure
 from std_srvs.srv import SetBool, Trigger, TriggerRequest
 
 from mass_aggregate_sim.msg import Command, StepAction, StepGoal
-from mass_aggregate_sim.srv import (AddJoint, AddLink, ApplyBodyImpulse, ApplyBodyWrench,
+from mass_aggregate_sim.srv import (AddBodySpring, AddJoint, AddLink, ApplyBodyImpulse,
+                                    ApplyBodyWrench,
                                     ApplyForce, ApplyImpulse, Remove, RemoveBody, RemoveJoint,
                                     RemoveLink, SetBodyState, SetHingeMotor, SetState, Spawn,
                                     SpawnBody)
@@ -49,6 +50,7 @@ SERVICES = {
     'add_joint': AddJoint,
     'remove_joint': RemoveJoint,
     'set_hinge_motor': SetHingeMotor,
+    'add_body_spring': AddBodySpring,
 }
 CHECKPOINTS = ('pause', 'step')
 WAIT = 60.0  # s of wall time for any one answer

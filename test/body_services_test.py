@@ -2,7 +2,8 @@
 """Bodies and joints through the node's real services and topics (rostest:
 test/body_services.test): analytic impulses and wrenches, in the world and in a turned frame, a
 DURATION wrench's exact step count, a hinged pendulum's period, ~joint_states with a motor changed
-at runtime, ~contacts, ~bodies, /tf, queries, and hostile requests refused with nothing changed."""
+at runtime, a body spring added at runtime, ~contacts, ~bodies, /tf, queries, and hostile requests
+refused with nothing changed."""
 import math
 import sys
 import threading
@@ -18,10 +19,10 @@ from sensor_msgs.msg import JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
 from mass_aggregate_sim.msg import BodyContact, BodyContactArray, BodySpec, JointEndSpec
-from mass_aggregate_sim.srv import (AddJointRequest, ApplyBodyImpulseRequest,
-                                    ApplyBodyWrenchRequest, GetBodyStateRequest, OverlapRequest,
-                                    RaycastRequest, RaycastResponse, SetBodyStateRequest,
-                                    SetHingeMotorRequest)
+from mass_aggregate_sim.srv import (AddBodySpringRequest, AddJointRequest,
+                                    ApplyBodyImpulseRequest, ApplyBodyWrenchRequest,
+                                    GetBodyStateRequest, OverlapRequest, RaycastRequest,
+                                    RaycastResponse, SetBodyStateRequest, SetHingeMotorRequest)
 from sim_client import SimClient, body, end, shape, spec
 
 DT = 0.01
@@ -215,6 +216,38 @@ class BodyServicesTest(unittest.TestCase):
         self.assertTrue(self.sim.step(100).success)
         self.assertAlmostEqual(states.fresh().velocity[0], -1.0, delta=0.01)
         states.sub.unregister()
+
+    def test_a_body_spring_added_at_runtime_holds_a_body_at_its_stretch(self):
+        # 2 kg on k = 100 N/m, critically damped (c = 2 sqrt(k m) = 28.3 N s/m), from the spring's
+        # rest length: it settles m g / k = 0.1962 m lower. Then ~remove_link drops it.
+        m, k = 2.0, 100.0
+        top = (0.0, 30.0, 10.0)
+        self.spawn(body('hung', x=(top[0], top[1], top[2] - 1.0), mass=m,
+                        shapes=[shape('sphere', radius=0.1)]))
+        request = AddBodySpringRequest(type='spring', a=end(JointEndSpec.BODY, 'hung'), b=end(),
+                                       anchor=point(top[0], top[1], top[2] - 1.0),
+                                       anchor_b=point(*top), stiffness=k,
+                                       damping=2.0 * math.sqrt(k * m), rest_length=-1.0)
+        refused = self.sim.add_body_spring(AddBodySpringRequest(
+            type='coil', a=request.a, b=request.b, stiffness=k, rest_length=-1.0))
+        self.assertFalse(refused.success)
+        self.assertIn('spring, bungee', refused.message)
+        elsewhere = self.sim.add_body_spring(AddBodySpringRequest(
+            type='spring', a=request.a, b=request.b, frame_id='no_such_frame', stiffness=k,
+            rest_length=-1.0))
+        self.assertFalse(elsewhere.success)
+        self.assertIn('frame_id', elsewhere.message)
+        added = self.sim.add_body_spring(request)
+        self.assertTrue(added.success, added.message)
+        self.assertTrue(self.sim.step(500).success)
+        z = self.state('hung').pose.position.z
+        sys.stderr.write('[ body spring ] rests %.5f m below its rest length (m g / k = %.5f)\n'
+                         % (top[2] - 1.0 - z, m * G / k))
+        self.assertAlmostEqual(top[2] - 1.0 - z, m * G / k, delta=1e-3)
+        removed = self.sim.remove_link(link_id=added.link_id)
+        self.assertTrue(removed.success, removed.message)
+        self.assertTrue(self.sim.step(10).success)
+        self.assertLess(self.state('hung').twist.linear.z, -0.5)
 
     def test_states_relative_to_another_body(self):
         self.spawn(body('base', x=(0.0, 40.0, 0.0), q=(0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5))),
@@ -464,6 +497,29 @@ class BodyServicesTest(unittest.TestCase):
         joint_cases.append(('Inf motor speed', motor))
         for what, request in joint_cases:
             refused.append(('add_joint ' + what, self.sim.add_joint(request)))
+
+        def spring(**fields):
+            r = AddBodySpringRequest(type='spring', a=end(JointEndSpec.BODY, 'target'), b=end(),
+                                     anchor=point(0.0, 0.0, 5.0), anchor_b=point(0.0, 0.0, 7.0),
+                                     stiffness=10.0, rest_length=-1.0)
+            for name, value in fields.items():
+                setattr(r, name, value)
+            return r
+        spring_cases = [
+            ('unknown type', spring(type='coil')),
+            ('two particles', spring(a=end(JointEndSpec.PARTICLE, 'bead'),
+                                     b=end(JointEndSpec.PARTICLE, 'bead'))),
+            ('fixed body to the world', spring(a=end(JointEndSpec.BODY, 'anvil'))),
+            ('unknown body', spring(a=end(JointEndSpec.BODY, 'ghost'))),
+            ('bad end kind', spring(b=end(9))),
+            ('NaN stiffness', spring(stiffness=NAN)),
+            ('negative damping', spring(damping=-1.0)),
+            ('Inf rest length', spring(rest_length=INF)),
+            ('NaN anchor', spring(anchor_b=point(NAN, 0.0, 0.0))),
+            ('unknown frame', spring(frame_id='nowhere')),
+        ]
+        for what, request in spring_cases:
+            refused.append(('add_body_spring ' + what, self.sim.add_body_spring(request)))
         refused += [
             ('impulse NaN', self.sim.apply_body_impulse(impulse('target', (NAN, 0.0, 0.0)))),
             ('impulse Inf point', self.sim.apply_body_impulse(

@@ -15,7 +15,8 @@ from geometry_msgs.msg import Vector3
 from std_srvs.srv import SetBool
 
 from mass_aggregate_sim.msg import JointEndSpec
-from mass_aggregate_sim.srv import (AddJoint, AddJointRequest, ApplyBodyImpulse,
+from mass_aggregate_sim.srv import (AddBodySpring, AddBodySpringRequest, AddJoint,
+                                    AddJointRequest, ApplyBodyImpulse,
                                     ApplyBodyImpulseRequest, ApplyBodyWrench,
                                     ApplyBodyWrenchRequest, ApplyForce, ApplyForceRequest,
                                     GetBodyState, GetBodyStateRequest, Overlap, OverlapRequest,
@@ -68,6 +69,9 @@ class FrameLookupTest(unittest.TestCase):
                     name='crate', reference_frame='nowhere')),
                 ('add_joint', AddJoint, AddJointRequest(
                     type='ball', a=end(JointEndSpec.BODY, 'crate'), frame_id='nowhere')),
+                ('add_body_spring', AddBodySpring, AddBodySpringRequest(
+                    type='spring', a=end(JointEndSpec.BODY, 'crate'), frame_id='nowhere',
+                    stiffness=1.0, rest_length=-1.0)),
                 ('raycast', Raycast, RaycastRequest(
                     frame_id='nowhere', direction=Vector3(1.0, 0.0, 0.0), max_distance=1.0)),
                 ('overlap', Overlap, OverlapRequest(

@@ -4,7 +4,8 @@ node with scripts/replay_commands.py, and expects the same final state hash; a t
 another integrator must be named as different (rostest: test/replay.test). The drive includes live
 reconfigures of the integrator and gravity, a ~step action that is cancelled, and bodies: spawns
 (one in a tf frame), joints (a hinge with a motor changed at runtime, a distance joint to a
-particle), wrenches (one for a duration), impulses, teleports and removals."""
+particle), a bungee from a body to a particle given in a tf frame, wrenches (one for a duration),
+impulses, teleports and removals."""
 import math
 import os
 import re
@@ -25,7 +26,8 @@ from dynamic_reconfigure.client import Client
 from geometry_msgs.msg import Point, TransformStamped, Vector3, Wrench
 
 from mass_aggregate_sim.msg import JointEndSpec, StepAction, StepGoal
-from mass_aggregate_sim.srv import (AddJointRequest, AddLinkRequest, ApplyBodyImpulseRequest,
+from mass_aggregate_sim.srv import (AddBodySpringRequest, AddJointRequest, AddLinkRequest,
+                                    ApplyBodyImpulseRequest,
                                     ApplyBodyWrenchRequest, ApplyForceRequest,
                                     SetBodyStateRequest, SetHingeMotorRequest, SetStateRequest)
 from sim_client import SimClient, body, end, shape, spec
@@ -125,6 +127,12 @@ class ReplayTest(unittest.TestCase):
             b=end(JointEndSpec.PARTICLE, 'spring_3'), anchor=Point(-1.0, 0.5, 3.0),
             min_length=-1.0, max_length=-1.0))
         self.assertTrue(rod.success, rod.message)
+        # A bungee from the crate to a particle, given in the turned frame.
+        bungee = sim.add_body_spring(AddBodySpringRequest(
+            type='bungee', a=end(JointEndSpec.BODY, 'crate'),
+            b=end(JointEndSpec.PARTICLE, 'spring_5'), frame_id='replay_frame',
+            anchor=Point(0.2, 0.1, 0.0), stiffness=25.0, damping=0.5, rest_length=0.5))
+        self.assertTrue(bungee.success, bungee.message)
         self.assertTrue(sim.apply_body_wrench(ApplyBodyWrenchRequest(
             name='crate', reference_point=Point(1.2, 2.0, 4.0), wrench=Wrench(
                 Vector3(0.0, 0.0, 40.0), Vector3(0.0, 0.0, 1.0)),

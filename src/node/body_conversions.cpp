@@ -182,6 +182,34 @@ void placeJointRequest(const ReferenceFrame& frame, JointRequest& request, AddJo
   msg.axis = toVector3Msg(request.values.directions["axis"]);
 }
 
+Result<BodySpringRequest> toBodySpringRequest(const AddBodySpring::Request& msg) {
+  BodySpringRequest request;
+  const auto pull_only = parseBodySpringType(msg.type);
+  if (!pull_only) return pull_only.status();
+  request.pull_only = *pull_only;
+  const auto a = toJointEnd(msg.a, "a");
+  if (!a) return a.status();
+  const auto b = toJointEnd(msg.b, "b");
+  if (!b) return b.status();
+  request.a = *a;
+  request.b = *b;
+  request.anchor_a = fromMsg(msg.anchor);
+  request.anchor_b = fromMsg(msg.anchor_b);
+  request.stiffness = msg.stiffness;
+  request.damping = msg.damping;
+  request.rest_length = msg.rest_length;
+  return request;
+}
+
+void placeBodySpringRequest(const ReferenceFrame& frame, BodySpringRequest& request,
+                            AddBodySpring::Request& msg) {
+  request.anchor_a = frame.pose.apply(request.anchor_a);
+  request.anchor_b = frame.pose.apply(request.anchor_b);
+  msg.frame_id.clear();
+  msg.anchor = toPointMsg(request.anchor_a);
+  msg.anchor_b = toPointMsg(request.anchor_b);
+}
+
 void fillBodyArray(const BodySnapshot& bodies, const std::uint64_t step, const double time,
                    BodyArray& msg) {
   const std::size_t n = bodies.ids.size();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/node/body_requests.h"
+#include "mass_aggregate_sim/node/body_springs.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/xmlrpc_reader.h"
 
@@ -297,18 +298,19 @@ void readPointSpring(XmlRpcValue& s, const std::string& k, engine::World& world)
                                          : defaultAnchor(world, end_a, k + ".anchor");
   const Vec3 anchor_b = has(s, "anchor_b") ? readVec3(s["anchor_b"], k + ".anchor_b")
                                            : defaultAnchor(world, end_b, k + ".anchor_b");
-  const auto resolved_a = resolveJointEnd(world, end_a, anchor_a, "a");
-  if (!resolved_a) throw ParamError(k, resolved_a.message());
-  const auto resolved_b = resolveJointEnd(world, end_b, anchor_b, "b");
-  if (!resolved_b) throw ParamError(k, resolved_b.message());
-  engine::PointSpring spring =
-      engine::PointSpring::between(*resolved_a, *resolved_b, realOr(s, k, "stiffness", 0.0),
-                                   realOr(s, k, "rest_length", -1.0), realOr(s, k, "damping", 0.0));
-  if (has(s, "rest_length") && spring.rest_length < 0.0) {
+  BodySpringRequest request;
+  request.pull_only = type == "bungee";
+  request.a = end_a;
+  request.b = end_b;
+  request.anchor_a = anchor_a;
+  request.anchor_b = anchor_b;
+  request.stiffness = realOr(s, k, "stiffness", 0.0);
+  request.damping = realOr(s, k, "damping", 0.0);
+  request.rest_length = realOr(s, k, "rest_length", -1.0);
+  if (has(s, "rest_length") && request.rest_length < 0.0) {
     throw ParamError(k + ".rest_length", "must be >= 0 (left out: the distance)");
   }
-  spring.pull_only = type == "bungee";
-  const auto added = world.addBodyGenerator(spring);
+  const auto added = addBodySpring(world, request);
   if (!added) throw ParamError(k, added.message());
 }
 

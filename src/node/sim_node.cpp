@@ -83,6 +83,7 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
       nh_.advertiseService("apply_body_impulse", &SimNode::onApplyBodyImpulse, this));
   services_.push_back(nh_.advertiseService("add_joint", &SimNode::onAddJoint, this));
   services_.push_back(nh_.advertiseService("remove_joint", &SimNode::onRemoveJoint, this));
+  services_.push_back(nh_.advertiseService("add_body_spring", &SimNode::onAddBodySpring, this));
   services_.push_back(nh_.advertiseService("set_hinge_motor", &SimNode::onSetHingeMotor, this));
   services_.push_back(nh_.advertiseService("raycast", &SimNode::onRaycast, this));
   services_.push_back(nh_.advertiseService("overlap", &SimNode::onOverlap, this));

@@ -1,4 +1,4 @@
-// The joint service handlers of SimNode.
+// The joint and body-spring service handlers of SimNode.
 #include "mass_aggregate_sim/node/body_conversions.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/sim_node.h"
@@ -29,6 +29,31 @@ bool SimNode::onAddJoint(AddJoint::Request& req, AddJoint::Response& res) {
     answer(res, true,
            "added " + req.type + " joint " + std::to_string(*id) + " (" +
                jointName(sim_.jointNames(), *id) + ") at " + describeTime(sim_.world()));
+  });
+}
+
+bool SimNode::onAddBodySpring(AddBodySpring::Request& req, AddBodySpring::Response& res) {
+  auto request = toBodySpringRequest(req);
+  if (!request) return answer(res, false, request.message());
+  BodySpringRequest spring = *request;
+  return runOnWorldThread(res, [&] {
+    const auto frame = referenceFrame(req.frame_id);
+    if (!frame) {
+      answer(res, false, "frame_id: " + frame.message());
+      return;
+    }
+    AddBodySpring::Request resolved = req;
+    placeBodySpringRequest(*frame, spring, resolved);
+    const auto id = sim_.addBodySpring(spring);
+    if (!id) {
+      answer(res, false, id.message());
+      return;
+    }
+    res.link_id = *id;
+    recordCommand("add_body_spring", resolved);
+    answer(
+        res, true,
+        "added body " + req.type + " " + std::to_string(*id) + " at " + describeTime(sim_.world()));
   });
 }
 

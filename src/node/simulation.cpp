@@ -167,14 +167,26 @@ Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impuls
   return Vec3(world_.particles().velocities().col(*world_.particles().find(*id)));
 }
 
-Result<GeneratorId> Simulation::addLink(const LinkRequest& request) {
+Status Simulation::checkLinkRoom() const {
   const std::size_t links =
       world_.generators().size() + world_.bodyGenerators().size() + world_.links().size();
   if (links >= limits_.max_links) {
     return Status::error("already " + std::to_string(links) + " links and force generators, " +
                          "~max_links (" + std::to_string(limits_.max_links) + ")");
   }
+  return Status::ok();
+}
+
+Result<GeneratorId> Simulation::addLink(const LinkRequest& request) {
+  const Status room = checkLinkRoom();
+  if (!room) return room;
   return node::addLink(world_, request);
+}
+
+Result<GeneratorId> Simulation::addBodySpring(const BodySpringRequest& request) {
+  const Status room = checkLinkRoom();
+  if (!room) return room;
+  return node::addBodySpring(world_, request);
 }
 
 Status Simulation::removeLink(const GeneratorId id) {

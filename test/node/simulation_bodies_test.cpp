@@ -483,3 +483,89 @@ TEST(SimulationBodiesTest, MotorChangesAtRuntimeAndNamedLookups) {
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim
+
+namespace mass_aggregate_sim {
+namespace node {
+namespace {
+
+// ~add_body_spring's requests: a spring held where asked (a body keeps its point in its own frame,
+// a negative rest length is the distance now), a bungee to a particle, every hostile request
+// refused with the world unchanged, ~max_links counting them with the links, ~remove_link
+// removing them.
+TEST(SimulationBodiesTest, BodySpringsAreAddedRefusedCountedAndRemoved) {
+  SimulationLimits limits;
+  limits.max_links = 2;
+  Simulation sim(emptyScene(), limits);
+  ASSERT_TRUE(sim.spawnBodies({cube("crate", Vec3(0, 0, 2))}));
+  BodySpringRequest good;
+  good.a = JointEndRef{JointEndRef::Kind::kBody, 0, "crate"};
+  good.b = JointEndRef{};  // the world
+  good.anchor_a = Vec3(0.5, 0, 2.5);
+  good.anchor_b = Vec3(0.5, 0, 4);
+  good.stiffness = 50.0;
+  good.damping = 0.5;
+
+  const auto with = [&](auto change) {
+    BodySpringRequest r = good;
+    change(r);
+    return r;
+  };
+  const Fingerprint before(sim);
+  const std::size_t generators = sim.world().bodyGenerators().size();
+  const std::vector<std::pair<std::string, BodySpringRequest>> hostile = {
+      {"two particles", with([](BodySpringRequest& r) {
+         r.a = {JointEndRef::Kind::kParticle, 0, "grain"};
+         r.b = {JointEndRef::Kind::kParticle, 0, "grain"};
+       })},
+      {"world to world", with([](BodySpringRequest& r) { r.a = {}; })},
+      {"unknown body", with([](BodySpringRequest& r) { r.a.name = "nobody"; })},
+      {"unknown particle", with([](BodySpringRequest& r) {
+         r.b = {JointEndRef::Kind::kParticle, 0, "nothing"};
+       })},
+      {"negative stiffness", with([](BodySpringRequest& r) { r.stiffness = -1.0; })},
+      {"stiffness beyond 1e12", with([](BodySpringRequest& r) { r.stiffness = 2e12; })},
+      {"NaN damping", with([](BodySpringRequest& r) { r.damping = kNaN; })},
+      {"infinite rest length", with([](BodySpringRequest& r) { r.rest_length = kInf; })},
+      {"rest length beyond 4e6", with([](BodySpringRequest& r) { r.rest_length = 5e6; })},
+      {"NaN anchor", with([](BodySpringRequest& r) { r.anchor_a.y() = kNaN; })},
+      {"world anchor beyond 1e6", with([](BodySpringRequest& r) { r.anchor_b.x() = 2e6; })},
+  };
+  for (const auto& [what, request] : hostile) {
+    const auto refused = sim.addBodySpring(request);
+    EXPECT_FALSE(refused) << what;
+    EXPECT_FALSE(refused.message().empty()) << what;
+    EXPECT_TRUE(Fingerprint(sim) == before) << what << ": " << refused.message();
+    EXPECT_EQ(sim.world().bodyGenerators().size(), generators) << what;
+  }
+  EXPECT_FALSE(parseBodySpringType("coil"));
+  EXPECT_NE(parseBodySpringType("coil").message().find("spring, bungee"), std::string::npos);
+
+  const auto spring = sim.addBodySpring(good);
+  ASSERT_TRUE(spring) << spring.message();
+  const auto& springs = sim.world().bodyGenerators().of<engine::PointSpring>();
+  ASSERT_EQ(springs.size(), 1u);
+  EXPECT_TRUE(springs[0].a.isBody());
+  EXPECT_TRUE(springs[0].b.isWorld());
+  EXPECT_NEAR((springs[0].a.point - Vec3(0.5, 0, 0.5)).norm(), 0.0, 1e-12);  // the body's frame
+  EXPECT_NEAR(springs[0].rest_length, 1.5, 1e-12);                           // the distance now
+  EXPECT_FALSE(springs[0].pull_only);
+
+  BodySpringRequest bungee = good;
+  bungee.pull_only = true;
+  bungee.b = JointEndRef{JointEndRef::Kind::kParticle, 0, "grain"};
+  bungee.rest_length = 2.0;
+  const auto second = sim.addBodySpring(bungee);
+  ASSERT_TRUE(second) << second.message();
+  EXPECT_TRUE(sim.world().bodyGenerators().of<engine::PointSpring>()[1].pull_only);
+  const auto third = sim.addBodySpring(good);  // ~max_links 2
+  ASSERT_FALSE(third);
+  EXPECT_NE(third.message().find("~max_links"), std::string::npos) << third.message();
+
+  ASSERT_TRUE(sim.removeLink(*spring));
+  ASSERT_TRUE(sim.removeLink(*second));
+  EXPECT_TRUE(sim.world().bodyGenerators().empty());
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace mass_aggregate_sim

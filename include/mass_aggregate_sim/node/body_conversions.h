@@ -5,6 +5,7 @@
 #include <geometry_msgs/Twist.h>
 #include <sensor_msgs/JointState.h>
 
+#include "mass_aggregate_sim/AddBodySpring.h"
 #include "mass_aggregate_sim/AddJoint.h"
 #include "mass_aggregate_sim/BodyArray.h"
 #include "mass_aggregate_sim/BodyContactArray.h"
@@ -13,6 +14,7 @@
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "mass_aggregate_sim/node/body_requests.h"
 #include "mass_aggregate_sim/node/body_snapshot.h"
+#include "mass_aggregate_sim/node/body_springs.h"
 #include "mass_aggregate_sim/node/joint_requests.h"
 
 namespace mass_aggregate_sim {
@@ -38,6 +40,14 @@ engine::Result<JointRequest> toJointRequest(const AddJoint::Request& msg);
 // The request's anchors and directions moved from `frame` into the world; the message updated to
 // match (frame_id cleared), as it is recorded.
 void placeJointRequest(const ReferenceFrame& frame, JointRequest& request, AddJoint::Request& msg);
+
+// An ~add_body_spring request with its anchors in its own frame_id: the type and the ends' kinds
+// checked (the numbers and the ends themselves are addBodySpring's).
+engine::Result<BodySpringRequest> toBodySpringRequest(const AddBodySpring::Request& msg);
+// The anchors moved from `frame` into the world; the message updated to match (frame_id
+// cleared), as it is recorded.
+void placeBodySpringRequest(const ReferenceFrame& frame, BodySpringRequest& request,
+                            AddBodySpring::Request& msg);
 
 // Every body; the header's stamp and frame are left for the caller.
 void fillBodyArray(const BodySnapshot& bodies, std::uint64_t step, double time, BodyArray& msg);

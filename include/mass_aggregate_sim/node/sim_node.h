@@ -21,6 +21,7 @@
 #include <string>
 #include <thread>
 
+#include "mass_aggregate_sim/AddBodySpring.h"
 #include "mass_aggregate_sim/AddJoint.h"
 #include "mass_aggregate_sim/AddLink.h"
 #include "mass_aggregate_sim/ApplyBodyImpulse.h"
@@ -134,6 +135,7 @@ class SimNode {
   bool onApplyBodyWrench(ApplyBodyWrench::Request& req, ApplyBodyWrench::Response& res);
   bool onApplyBodyImpulse(ApplyBodyImpulse::Request& req, ApplyBodyImpulse::Response& res);
   bool onAddJoint(AddJoint::Request& req, AddJoint::Response& res);
+  bool onAddBodySpring(AddBodySpring::Request& req, AddBodySpring::Response& res);
   bool onRemoveJoint(RemoveJoint::Request& req, RemoveJoint::Response& res);
   bool onSetHingeMotor(SetHingeMotor::Request& req, SetHingeMotor::Response& res);
   bool onRaycast(Raycast::Request& req, Raycast::Response& res);

@@ -8,6 +8,7 @@
 
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "mass_aggregate_sim/node/body_requests.h"
+#include "mass_aggregate_sim/node/body_springs.h"
 #include "mass_aggregate_sim/node/joint_requests.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/settings.h"
@@ -77,7 +78,9 @@ class Simulation {
   engine::Result<std::uint64_t> applyForce(const ForceRequest& request);
   // dv = J / m; returns the velocity right after.
   engine::Result<engine::Vec3> applyImpulse(const ParticleRef& ref, const engine::Vec3& impulse);
+  // Links and springs on bodies count together against ~max_links; removeLink removes either.
   engine::Result<engine::GeneratorId> addLink(const LinkRequest& request);
+  engine::Result<engine::GeneratorId> addBodySpring(const BodySpringRequest& request);
   engine::Status removeLink(engine::GeneratorId id);
 
   // One fixed step: sustained forces are added, then the world steps.
@@ -121,6 +124,9 @@ class Simulation {
   std::size_t sustainedForceCount() const { return sustained_.size() + wrenches_.size(); }
 
  private:
+  // Refused when ~max_links links and force generators exist already.
+  engine::Status checkLinkRoom() const;
+
   struct SustainedForce {
     engine::ParticleId particle;
     engine::Vec3 force;
