@@ -143,16 +143,28 @@ Result<JointEndRef> toJointEnd(const JointEndSpec& msg, const char* field) {
   return end;
 }
 
-Result<JointRequest> toJointRequest(const AddJoint::Request& msg) {
-  JointRequest request;
-  request.type = msg.type;
-  request.name = msg.name;
+namespace {
+
+// A request's two ends, from the message's a and b.
+template <typename Message, typename Request>
+Status readEnds(const Message& msg, Request& request) {
   const auto a = toJointEnd(msg.a, "a");
   if (!a) return a.status();
   const auto b = toJointEnd(msg.b, "b");
   if (!b) return b.status();
   request.a = *a;
   request.b = *b;
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<JointRequest> toJointRequest(const AddJoint::Request& msg) {
+  JointRequest request;
+  request.type = msg.type;
+  request.name = msg.name;
+  const Status ends = readEnds(msg, request);
+  if (!ends) return ends;
   request.anchor_a = fromMsg(msg.anchor);
   request.anchor_b = msg.separate_anchor_b ? fromMsg(msg.anchor_b) : request.anchor_a;
   request.collide_connected = msg.collide_connected;
@@ -187,12 +199,8 @@ Result<BodySpringRequest> toBodySpringRequest(const AddBodySpring::Request& msg)
   const auto pull_only = parseBodySpringType(msg.type);
   if (!pull_only) return pull_only.status();
   request.pull_only = *pull_only;
-  const auto a = toJointEnd(msg.a, "a");
-  if (!a) return a.status();
-  const auto b = toJointEnd(msg.b, "b");
-  if (!b) return b.status();
-  request.a = *a;
-  request.b = *b;
+  const Status ends = readEnds(msg, request);
+  if (!ends) return ends;
   request.anchor_a = fromMsg(msg.anchor);
   request.anchor_b = fromMsg(msg.anchor_b);
   request.stiffness = msg.stiffness;

@@ -25,6 +25,17 @@ int fewestSubsteps(const Real dt, const Real largest_substep) {
   return needed <= kMaxSubsteps ? static_cast<int>(needed) : 0;
 }
 
+// The spring a report names: its id, omega, the bound on the fastest mode it takes part in, that
+// bound times h, and the integrator's limit there.
+void nameSpring(StabilityReport& report, const GeneratorId id, const Real omega,
+                const Real coupled_omega, const Real h, const Real limit) {
+  report.generator = id;
+  report.omega = omega;
+  report.coupled_omega = coupled_omega;
+  report.omega_h = coupled_omega * h;
+  report.limit = limit;
+}
+
 // Completes a report whose worst spring is set (generator, omega, coupled_omega, omega_h, limit)
 // from that spring's largest stable substep and the one that keeps the auto_substep margin.
 void finishReport(StabilityReport& report, const char* what, const char* integrator, const Real dt,
@@ -182,11 +193,8 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
     if (ratio > worst_ratio) {
       worst_ratio = ratio;
       worst_stable_substep = stable_substep;
-      report.generator = t.id;
-      report.omega = omega;
-      report.coupled_omega = coupled_omega;
-      report.omega_h = coupled_omega * h;
-      report.limit = stabilityLimit(integrator, weakest_damping, h);
+      nameSpring(report, t.id, omega, coupled_omega, h,
+                 stabilityLimit(integrator, weakest_damping, h));
       worst_omega = coupled_omega;
       worst_damping = weakest_damping;
     }
@@ -241,11 +249,7 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
     if (report.generator != 0 && !(stable_substep < worst_stable_substep)) continue;
     worst_stable_substep = stable_substep;
     worst_margin_substep = margin_substep;
-    report.generator = t.id;
-    report.omega = omega;
-    report.coupled_omega = omega;
-    report.omega_h = omega * h;
-    report.limit = stabilityLimit(binding, binding_damping, h);
+    nameSpring(report, t.id, omega, omega, h, stabilityLimit(binding, binding_damping, h));
     worst_at_particle = binding_particle;
   }
   if (report.generator == 0) return report;
