@@ -123,23 +123,30 @@ const char* linkTypeName(const LinkType type) {
 
 std::string linkTypeNames() { return "spring, bungee, stiff_spring, cable, rod"; }
 
+Status checkSpringNumbers(const Real stiffness, const Real damping) {
+  const Status valid = checkNonNegative(stiffness, kMaxStiffness, "stiffness", "N/m");
+  if (!valid) return valid;
+  return checkNonNegative(damping, kMaxLinkDamping, "damping", "N s/m");
+}
+
+Status checkRequestedLength(const Real value, const char* field) {
+  if (!std::isfinite(value)) return Status::error(std::string(field) + ": must be finite");
+  if (value > kMaxLength) {
+    return Status::error(std::string(field) + ": must be at most " + std::to_string(kMaxLength) +
+                         " m (negative: the current distance)");
+  }
+  return Status::ok();
+}
+
 namespace {
 
 // What the engine does not check itself: upper bounds, and lengths (negative: the distance).
 Status checkLinkNumbers(const LinkRequest& r) {
-  Status valid = checkNonNegative(r.stiffness, kMaxStiffness, "stiffness", "N/m");
-  if (valid) valid = checkNonNegative(r.damping, kMaxLinkDamping, "damping", "N s/m");
-  if (!valid) return valid;
-  for (const auto& [value, field] : {std::pair<Real, const char*>{r.rest_length, "rest_length"},
-                                     {r.max_length, "max_length"},
-                                     {r.length, "length"}}) {
-    if (!std::isfinite(value)) return Status::error(std::string(field) + ": must be finite");
-    if (value > kMaxLength) {
-      return Status::error(std::string(field) + ": must be at most " + std::to_string(kMaxLength) +
-                           " m (negative: the current distance)");
-    }
-  }
-  return Status::ok();
+  Status valid = checkSpringNumbers(r.stiffness, r.damping);
+  if (valid) valid = checkRequestedLength(r.rest_length, "rest_length");
+  if (valid) valid = checkRequestedLength(r.max_length, "max_length");
+  if (valid) valid = checkRequestedLength(r.length, "length");
+  return valid;
 }
 
 }  // namespace

@@ -26,9 +26,8 @@ struct BodySpringRequest {
 // "spring" (pull_only false) or "bungee" (true); anything else is refused with both names.
 engine::Result<bool> parseBodySpringType(const std::string& type);
 
-// The node's bounds (stiffness and damping as for ~add_link, rest_length finite and at most
-// kMaxLength), the ends resolved, then the engine's own checks; adds the spring or changes
-// nothing.
+// The node's bounds (checkSpringNumbers, checkRequestedLength), the ends resolved, then the
+// engine's own checks; adds the spring or changes nothing.
 engine::Result<engine::GeneratorId> addBodySpring(engine::World& world,
                                                   const BodySpringRequest& request);
 

@@ -24,6 +24,12 @@ const char* linkTypeName(LinkType type);
 // All names, comma separated, for error messages.
 std::string linkTypeNames();
 
+// The node's bounds on a spring's numbers, for links and springs on bodies alike: stiffness in
+// [0, kMaxStiffness] N/m, damping in [0, kMaxLinkDamping] N s/m; and a requested length (a
+// rest_length, max_length or length) finite and at most kMaxLength (negative: the distance now).
+engine::Status checkSpringNumbers(engine::Real stiffness, engine::Real damping);
+engine::Status checkRequestedLength(engine::Real value, const char* field);
+
 // A link between particle a and particle b, or between a and a fixed anchor when b is empty.
 // A negative rest_length / max_length / length means the distance when the link is made.
 struct LinkRequest {

@@ -106,7 +106,7 @@ void BodyForceKind<PointSpring>::stiffness(const std::vector<PointSpring>& sprin
     const JointEnd* ends[2] = {&spring.a, &spring.b};
     for (int e = 0; e < 2; ++e) {
       term.mobility[e] = scene.mobility(*ends[e]);
-      term.particle[e] = scene.end(*ends[e]).particle;
+      if (ends[e]->isParticle()) term.particle[e] = scene.end(*ends[e]).particle;
     }
     terms.push_back(term);
   }
