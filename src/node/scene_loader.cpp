@@ -417,10 +417,17 @@ class SceneBuilder {
         drag.angular = realOr(force, k, "angular", 0.0);
         addOnBodies(drag, force, k);
       } else if (type == "buoyancy" && has(force, "bodies")) {
-        checkKeys(
-            force, k,
-            {"type", "bodies", "max_depth", "volume", "liquid_density", "surface_height", "up"});
+        checkKeys(force, k,
+                  {"type", "bodies", "model", "max_depth", "volume", "liquid_density",
+                   "surface_height", "up"});
         engine::BodyBuoyancy buoyancy;
+        const std::string model = stringOr(force, k, "model", "shapes");
+        if (model == "centre") {
+          buoyancy.model = engine::BuoyancyModel::kCentre;
+        } else if (model != "shapes") {
+          throw ParamError(k + ".model",
+                           "unknown model " + quoteInput(model) + " (known: shapes, centre)");
+        }
         readBuoyancy(force, k, buoyancy);
         addOnBodies(buoyancy, force, k);
       } else if (type == "drag") {

@@ -715,6 +715,7 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
       case 42: {
         BodyBuoyancy buoyancy;
         buoyancy.body = pickBody();
+        buoyancy.model = static_cast<BuoyancyModel>(in.byte() % 3);  // 2: not a model
         buoyancy.max_depth = in.real();
         buoyancy.volume = in.real();
         buoyancy.liquid_density = in.real();

@@ -170,6 +170,7 @@ forces:
   - {type: bungee, a: bead, b: crate, stiffness: 20, rest_length: 2, damping: 0.5}
   - {type: drag, bodies: [crate, float], k1: 0.5, k2: 0.1, angular: 0.2}
   - {type: buoyancy, bodies: [float], liquid_density: 1000}
+  - {type: buoyancy, bodies: [crate], model: centre, max_depth: 0.2, surface_height: -5}
   - {type: drag, particles: [bead], k1: 0.3}
 )");
   ASSERT_TRUE(loaded.isOk()) << loaded.message();
@@ -187,8 +188,13 @@ forces:
   EXPECT_DOUBLE_EQ(springs[1].damping, 0.5);
   ASSERT_EQ(world.bodyGenerators().of<engine::BodyDrag>().size(), 2u);
   EXPECT_DOUBLE_EQ(world.bodyGenerators().of<engine::BodyDrag>()[1].angular, 0.2);
-  ASSERT_EQ(world.bodyGenerators().of<engine::BodyBuoyancy>().size(), 1u);
-  EXPECT_NEAR(world.bodyGenerators().of<engine::BodyBuoyancy>()[0].volume, 1.0, 1e-12);
+  const auto& buoyancies = world.bodyGenerators().of<engine::BodyBuoyancy>();
+  ASSERT_EQ(buoyancies.size(), 2u);
+  EXPECT_EQ(buoyancies[0].model, engine::BuoyancyModel::kShapes);
+  EXPECT_NEAR(buoyancies[0].volume, 1.0, 1e-12);
+  EXPECT_EQ(buoyancies[1].model, engine::BuoyancyModel::kCentre);
+  EXPECT_DOUBLE_EQ(buoyancies[1].max_depth, 0.2);
+  EXPECT_DOUBLE_EQ(buoyancies[1].surface_height, -5.0);
   EXPECT_EQ(world.generators().of<engine::Drag>().size(), 1u);
   const std::string two =
       "particles: [{name: p, position: [0, 0, 5]}, {name: q, position: [1, 0, 5]}]\n"
@@ -208,6 +214,12 @@ forces:
   expectError(two + "forces: [{type: drag, bodies: [a], k1: -1}]", "scene.forces[0]", "k1 and k2");
   expectError(two + "forces: [{type: buoyancy, bodies: [a], particles: [p]}]",
               "scene.forces[0].particles", "unknown key");
+  expectError(two + "forces: [{type: buoyancy, bodies: [a], model: center}]",
+              "scene.forces[0].model", "unknown model 'center' (known: shapes, centre)");
+  expectError(two + "forces: [{type: buoyancy, bodies: [a], max_depth: 0.2}]", "scene.forces[0]",
+              "max_depth is for model centre");
+  expectError(two + "forces: [{type: buoyancy, particles: [p], model: shapes}]",
+              "scene.forces[0].model", "unknown key");
   SceneOverrides few;
   few.max_links = 1;
   expectError(two + "forces: [{type: drag, bodies: [a], k1: 1}, {type: drag, bodies: [a], k1: 1}]",

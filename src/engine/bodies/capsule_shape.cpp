@@ -1,7 +1,9 @@
 // The capsule body shape kind (capsule_shape.h).
 #include "mass_aggregate_sim/engine/bodies/capsule_shape.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "engine/collision/geometry.h"
 #include "engine/core/checks.h"
@@ -68,6 +70,112 @@ std::vector<ShapePrimitive> BodyShapeKind<CapsuleShape>::describe(const CapsuleS
     ball.size = Vec3::Constant(diameter);
   }
   return parts;
+}
+
+namespace {
+
+// The part below the surface of a disk of radius rho whose centre is h above the surface, the
+// disk's plane tilted so that its height rises by `tilt` per metre along its steepest direction
+// e (tilt = sin of the angle between the capsule's axis and up): the points eta e + ... with
+// h + tilt eta < 0, the disk below the chord at eta0 = -h / tilt. The segment beyond a chord at
+// distance d from the centre has half-angle alpha = atan2(c, d), c = sqrt((rho - d)(rho + d)),
+// and area rho^2 alpha - c d (acos(d / rho) would lose all its digits near a grazing cut); the
+// part below eta0 is that segment (d = -eta0) or the disk without it (d = eta0), and its first
+// moment along e is -2/3 c^3.
+struct DiskPart {
+  Real area = 0.0;
+  Real moment = 0.0;
+};
+DiskPart diskBelow(const Real rho, const Real h, const Real tilt) {
+  if (rho <= 0.0) return DiskPart{};
+  if (std::abs(h) >= tilt * rho) return h < 0.0 ? DiskPart{M_PI * rho * rho, 0.0} : DiskPart{};
+  const Real eta0 = -h / tilt;
+  const Real d = std::min(std::abs(eta0), rho);
+  const Real chord = std::sqrt((rho - d) * (rho + d));
+  const Real segment = std::max(rho * rho * std::atan2(chord, d) - chord * d, 0.0);
+  const Real area = eta0 < 0.0 ? segment : M_PI * rho * rho - segment;
+  return DiskPart{area, -2.0 / 3.0 * chord * chord * chord};
+}
+
+// Gauss-Legendre nodes and weights, 8 points on [-1, 1] (symmetric pairs).
+constexpr Real kNode[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                           0.9602898564975363};
+constexpr Real kWeight[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                             0.1012285362903763};
+
+// The disks along a piece of the capsule's axis, x(t) = base + t axis for t in [t0, t1] (radius
+// rho(t), centre height above(t) = h_base + t c): sum of their parts below the surface, where the
+// cut moves smoothly through the disks (the caller splits the axis where it enters or leaves a
+// disk). The substitution t = t0 + (t1 - t0) (3u^2 - 2u^3) flattens the integrand's ends, where
+// a segment's area behaves as a power 3/2 of the distance, so the quadrature keeps its order.
+template <typename Radius>
+void addDisks(const Vec3& base, const Vec3& axis, const Vec3& e, const Real h_base, const Real c,
+              const Real tilt, const Real t0, const Real t1, Radius&& rho, SubmergedVolume& sum) {
+  if (t1 <= t0) return;
+  for (int n = 0; n < 8; ++n) {
+    const Real node = (n < 4 ? -1.0 : 1.0) * kNode[n % 4];
+    const Real u = 0.5 * (node + 1.0);
+    const Real t = t0 + (t1 - t0) * u * u * (3.0 - 2.0 * u);
+    const Real dt = (t1 - t0) * 6.0 * u * (1.0 - u) * 0.5 * kWeight[n % 4];
+    const DiskPart part = diskBelow(rho(t), h_base + t * c, tilt);
+    sum.volume += dt * part.area;
+    sum.moment += dt * (part.area * (base + t * axis) + part.moment * e);
+  }
+}
+
+// Splits [t0, t1] at the given points (those inside) and adds the disks of each piece.
+template <typename Radius>
+void addSplitDisks(const Vec3& base, const Vec3& axis, const Vec3& e, const Real h_base,
+                   const Real c, const Real tilt, const Real t0, const Real t1, Real cut_a,
+                   Real cut_b, Radius&& rho, SubmergedVolume& sum) {
+  if (cut_b < cut_a) std::swap(cut_a, cut_b);
+  Real from = t0;
+  for (const Real cut : {cut_a, cut_b}) {
+    if (!(cut > from && cut < t1)) continue;
+    addDisks(base, axis, e, h_base, c, tilt, from, cut, rho, sum);
+    from = cut;
+  }
+  addDisks(base, axis, e, h_base, c, tilt, from, t1, rho, sum);
+}
+
+}  // namespace
+
+// The capsule as disks across its axis a: the cylinder's of radius r for t in [-l, l], each
+// hemisphere's of radius sqrt(r^2 - t^2) at t in [0, r] beyond its end. A disk at height h is cut
+// by the surface where |h| < tilt rho (diskBelow); along the cylinder that starts and stops at
+// h_c + t c = +-tilt r (c = up.a), and beyond an end at height h_e (outward direction a', c' =
+// up.a') where (h_e + t c')^2 = (r^2 - t^2) tilt^2: t = -h_e c' +- tilt sqrt(r^2 - h_e^2).
+SubmergedVolume BodyShapeKind<CapsuleShape>::submerged(const CapsuleShape& capsule,
+                                                       const Frame& frame,
+                                                       const LiquidSurface& surface) {
+  const Real r = capsule.radius;
+  const Real l = capsule.half_length;
+  const Vec3 axis = frame.rotation.col(2);
+  const Real c = surface.up.dot(axis);
+  const Real h_c = surface.above(frame.position);
+  if (h_c >= l * std::abs(c) + r) return SubmergedVolume{};
+  if (h_c <= -(l * std::abs(c) + r)) return SubmergedVolume::whole(volume(capsule), frame.position);
+  const Vec3 rising = surface.up - c * axis;
+  const Real tilt = rising.norm();
+  const Vec3 e = tilt > 0.0 ? Vec3(rising / tilt) : Vec3::Zero();
+  SubmergedVolume sum;
+  const auto cylinder = [r](Real) { return r; };
+  const auto cylinder_cut = [&](const Real side) {
+    return c != 0.0 ? (side * tilt * r - h_c) / c : -2.0 * l;
+  };
+  addSplitDisks(frame.position, axis, e, h_c, c, tilt, -l, l, cylinder_cut(-1.0), cylinder_cut(1.0),
+                cylinder, sum);
+  const auto hemisphere = [r](const Real t) { return std::sqrt(std::max(r * r - t * t, 0.0)); };
+  for (const Real side : {-1.0, 1.0}) {
+    const Vec3 out = side * axis;
+    const Vec3 end = frame.position + l * out;
+    const Real h_e = surface.above(end);
+    const Real c_e = side * c;
+    const Real spread = tilt * std::sqrt(std::max(r * r - h_e * h_e, 0.0));
+    addSplitDisks(end, out, e, h_e, c_e, tilt, 0.0, r, -h_e * c_e - spread, -h_e * c_e + spread,
+                  hemisphere, sum);
+  }
+  return sum;
 }
 
 }  // namespace engine

@@ -1,6 +1,7 @@
 // The sphere body shape kind (sphere_shape.h).
 #include "mass_aggregate_sim/engine/bodies/sphere_shape.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/collision/geometry.h"
@@ -41,6 +42,19 @@ std::vector<ShapePrimitive> BodyShapeKind<SphereShape>::describe(const SphereSha
   ball.type = ShapePrimitive::Type::kSphere;
   ball.size = Vec3::Constant(2.0 * sphere.radius);
   return {ball};
+}
+
+// The cap below the surface, of height d (d = r - s for the centre s above the surface):
+//   V = pi d^2 (3r - d) / 3, its centroid 3 (2r - d)^2 / (4 (3r - d)) below the centre
+// (3r/8 for the half ball, 0 for the whole).
+SubmergedVolume BodyShapeKind<SphereShape>::submerged(const SphereShape& sphere, const Frame& frame,
+                                                      const LiquidSurface& surface) {
+  const Real r = sphere.radius;
+  const Real d = std::min(r - surface.above(frame.position), 2.0 * r);
+  if (d <= 0.0) return SubmergedVolume{};
+  const Real volume = M_PI * d * d * (3.0 * r - d) / 3.0;
+  const Real below = 3.0 * (2.0 * r - d) * (2.0 * r - d) / (4.0 * (3.0 * r - d));
+  return SubmergedVolume{volume, volume * (frame.position - below * surface.up)};
 }
 
 }  // namespace engine

@@ -70,6 +70,13 @@ ForceEnd BodyForceScene::centre(const BodyId body) const {
   return out;
 }
 
+Transform BodyForceScene::massPose(const BodyId body) const {
+  const std::size_t i = bodies_.denseIndexUnchecked(body);
+  const SolverBody* sb = solverBody(i);
+  if (!sb) return Transform{bodies_.position(i), bodies_.orientation(i)};
+  return Transform{bodies_.position(i) + sb->dp, sb->dq * bodies_.orientation(i)};
+}
+
 Vec3 BodyForceScene::angularVelocity(const BodyId body) const {
   const std::size_t i = bodies_.denseIndexUnchecked(body);
   const SolverBody* sb = solverBody(i);

@@ -50,6 +50,8 @@ class BodyForceScene {
   Real mobility(const JointEnd& end) const;
   // A body's centre of mass, as an end.
   ForceEnd centre(BodyId body) const;
+  // A body's mass frame (centre of mass, principal axes) as the step has moved it so far.
+  Transform massPose(BodyId body) const;
   Vec3 angularVelocity(BodyId body) const;
   const BodyStore& bodies() const { return bodies_; }
   Real gravityMagnitude() const { return gravity_magnitude_; }

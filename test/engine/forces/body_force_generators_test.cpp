@@ -296,10 +296,11 @@ TEST(BodyDrag, AFallingBodyReachesItsTerminalSpeed) {
 }
 
 TEST(BodyBuoyancy, ABoxFloatsAtTheDepthItsDensityGives) {
-  // A 1 m cube (V = 1 m^3 from its shape) of 500 kg in water: the submerged fraction is 1/2, its
-  // centre at the surface (max_depth defaults to its reach). One of 250 kg with max_depth 0.5:
-  // fraction 1/4 = (0.5 - s) / 1, its centre 0.25 m above. Drag settles them (awake: a body
-  // asleep stops where it was slow, here within a centimetre of its depth).
+  // A 1 m cube (V = 1 m^3 from its shape) of 500 kg in water: half of it under, its centre at the
+  // surface. One of 250 kg by the centre's law with max_depth 0.5: fraction 1/4 = (0.5 - s) / 1,
+  // its centre 0.25 m above (the shapes' part would put it at 0.25 m too: a quarter of the cube
+  // is under when its centre is 0.25 m up). Drag settles them (awake: a body asleep stops where
+  // it was slow, here within a centimetre of its depth).
   World world(config());
   BodySpec half_spec = body(box(Vec3::Constant(0.5)), 500.0, Vec3(0.0, 0.0, 1.0));
   half_spec.can_sleep = false;
@@ -311,11 +312,17 @@ TEST(BodyBuoyancy, ABoxFloatsAtTheDepthItsDensityGives) {
   floats.body = half;
   ASSERT_TRUE(world.addBodyGenerator(floats));
   const BodyBuoyancy& added = world.bodyGenerators().of<BodyBuoyancy>().back();
+  EXPECT_EQ(added.model, BuoyancyModel::kShapes);
   EXPECT_NEAR(added.volume, 1.0, 1e-12);
-  EXPECT_NEAR(added.max_depth, world.bodies().reach(dense(world, half)), 1e-12);
   floats.body = quarter;
+  floats.model = BuoyancyModel::kCentre;
   floats.max_depth = 0.5;
   ASSERT_TRUE(world.addBodyGenerator(floats));
+  floats.max_depth = -1.0;
+  ASSERT_TRUE(world.addBodyGenerator(floats));  // the reach unless given
+  EXPECT_NEAR(world.bodyGenerators().of<BodyBuoyancy>().back().max_depth,
+              world.bodies().reach(dense(world, quarter)), 1e-12);
+  ASSERT_TRUE(world.removeGenerator(world.bodyGenerators().of<BodyBuoyancy>().back().id));
   for (const BodyId id : {half, quarter}) {
     BodyDrag drag;
     drag.body = id;
@@ -325,6 +332,90 @@ TEST(BodyBuoyancy, ABoxFloatsAtTheDepthItsDensityGives) {
   for (int step = 0; step < 1200; ++step) world.step();
   EXPECT_NEAR(world.bodies().position(dense(world, half)).z(), 0.0, 1e-3);
   EXPECT_NEAR(world.bodies().position(dense(world, quarter)).z(), 0.25, 1e-3);
+}
+
+// A body of the given shape, mass and turn, awake throughout, floating in water below z = 0 by
+// the given model, with linear and angular drag to settle it; its state after `seconds`.
+struct Floated {
+  Vec3 position;
+  Quat orientation;
+};
+Floated floatFor(const BodyShapeSpec& shape, const Real mass, const Quat& turn,
+                 const BuoyancyModel model, const Real k1, const Real angular, const Real seconds) {
+  World world(config());
+  BodySpec spec = body(shape, mass, Vec3::Zero(), turn);
+  spec.can_sleep = false;
+  const BodyId id = *world.addBody(spec);
+  BodyBuoyancy buoyancy;
+  buoyancy.body = id;
+  buoyancy.model = model;
+  EXPECT_TRUE(world.addBodyGenerator(buoyancy));
+  BodyDrag drag;
+  drag.body = id;
+  drag.k1 = k1;
+  drag.angular = angular;
+  EXPECT_TRUE(world.addBodyGenerator(drag));
+  const int steps = static_cast<int>(std::lround(seconds * 60.0));
+  for (int step = 0; step < steps; ++step) world.step();
+  const std::size_t i = dense(world, id);
+  return Floated{world.bodies().position(i), world.bodies().orientation(i)};
+}
+
+Real degrees(const Real radians) { return radians * 180.0 / kPi; }
+
+TEST(BodyBuoyancy, AFloatingPlankRightsItselfAtItsCentreOfBuoyancy) {
+  // A 2 x 2 x 0.4 m plank of half the water's density (800 kg), let go at the surface tilted 20
+  // degrees: the submerged wedge's centroid lies off the centre of mass on the low side and turns
+  // it back (metacentric height 1.57 m); it settles flat, half under, centre at the surface. By
+  // the centre's law nothing turns it: it stays at 20 degrees.
+  const Quat tilted(Eigen::AngleAxisd(20.0 * kPi / 180.0, Vec3::UnitX()));
+  const BodyShapeSpec plank = box(Vec3(1.0, 1.0, 0.2));
+  const Floated shapes =
+      floatFor(plank, 800.0, tilted, BuoyancyModel::kShapes, 6000.0, 2000.0, 10.0);
+  EXPECT_LT(degrees(angleBetween(shapes.orientation * Vec3::UnitZ(), Vec3::UnitZ())), 0.1);
+  EXPECT_NEAR(shapes.position.z(), 0.0, 1e-4);
+  const Floated centre =
+      floatFor(plank, 800.0, tilted, BuoyancyModel::kCentre, 6000.0, 2000.0, 10.0);
+  EXPECT_NEAR(degrees(angleBetween(centre.orientation * Vec3::UnitZ(), Vec3::UnitZ())), 20.0, 1e-6);
+}
+
+TEST(BodyBuoyancy, ASquareLogOfHalfTheDensityRollsOntoAnEdge) {
+  // A 4 x 1 x 1 m log of half the water's density: flat on a face is unstable (metacentric
+  // height d/2 + a^2/(12 d) - a/2 = -a/12 with draft d = a/2); on an edge, a diagonal of its
+  // square section upright, the lower half of the section is a triangle whose centroid is
+  // sqrt(2)/6 = 0.236 m below the centre, against 0.25 m for the half face-down: the centre of
+  // mass sits lowest above the centre of buoyancy, so it rolls from 10 to 45 degrees and stays.
+  const Quat tilted(Eigen::AngleAxisd(10.0 * kPi / 180.0, Vec3::UnitX()));
+  const Floated log = floatFor(box(Vec3(2.0, 0.5, 0.5)), 2000.0, tilted, BuoyancyModel::kShapes,
+                               8000.0, 300.0, 20.0);
+  const Vec3 side = log.orientation * Vec3::UnitY();
+  EXPECT_NEAR(degrees(std::atan2(side.z(), side.y())), 45.0, 0.5);
+  EXPECT_NEAR((log.orientation * Vec3::UnitX()).z(), 0.0, 1e-3);  // its length stays level
+  EXPECT_NEAR(log.position.z(), 0.0, 1e-3);  // half under: the section's diagonal at the surface
+}
+
+TEST(BodyBuoyancy, ABallOfAQuarterTheDensityFloatsAtItsCapsDepth) {
+  // A ball of radius r under water by a cap of height d holds pi d^2 (3r - d) / 3 of water; a
+  // quarter of its volume when d^3 - 3 r d^2 + r^3 = 0, whose root in (0, 2r) puts the centre
+  // r - d = 2 r cos(80 degrees) above the surface (the centre's law: r/2).
+  const Real r = 0.5;
+  const Real mass = 0.25 * 1000.0 * 4.0 / 3.0 * kPi * r * r * r;
+  const Floated ball =
+      floatFor(sphere(r), mass, Quat::Identity(), BuoyancyModel::kShapes, 2000.0, 10.0, 10.0);
+  EXPECT_NEAR(ball.position.z(), 2.0 * r * std::cos(80.0 * kPi / 180.0), 1e-6);
+}
+
+TEST(BodyBuoyancy, ACapsuleLogLiesDownOnTheWater) {
+  // A capsule of half the water's density let go with its axis 30 degrees from level: it lies
+  // down along the surface, half under (by the centre's law it would keep its slope).
+  BodyShapeSpec capsule;
+  capsule.geometry = CapsuleShape{0.2, 1.0};
+  const Real volume = BodyShapeKind<CapsuleShape>::volume(CapsuleShape{0.2, 1.0});
+  const Quat pitched(Eigen::AngleAxisd(60.0 * kPi / 180.0, Vec3::UnitY()));
+  const Floated log =
+      floatFor(capsule, 500.0 * volume, pitched, BuoyancyModel::kShapes, 3000.0, 100.0, 10.0);
+  EXPECT_NEAR(degrees(std::asin((log.orientation * Vec3::UnitZ()).z())), 0.0, 0.1);
+  EXPECT_NEAR(log.position.z(), 0.0, 1e-4);
 }
 
 TEST(BodyForceGenerators, BadInputIsRefusedAndChangesNothing) {
@@ -369,6 +460,15 @@ TEST(BodyForceGenerators, BadInputIsRefusedAndChangesNothing) {
   buoyancy.up = Vec3::UnitZ();
   buoyancy.max_depth = 0.0;
   EXPECT_FALSE(world.addBodyGenerator(buoyancy));
+  buoyancy.max_depth = 0.5;  // a depth is the centre's law's, not the shapes'
+  const Result<GeneratorId> depth = world.addBodyGenerator(buoyancy);
+  ASSERT_FALSE(depth);
+  EXPECT_NE(depth.status().message().find("max_depth is for model centre"), std::string::npos);
+  buoyancy.max_depth = -1.0;
+  buoyancy.model = static_cast<BuoyancyModel>(7);
+  const Result<GeneratorId> model = world.addBodyGenerator(buoyancy);
+  ASSERT_FALSE(model);
+  EXPECT_NE(model.status().message().find("model"), std::string::npos);
   EXPECT_TRUE(world.bodyGenerators().empty());
   EXPECT_EQ(world.stateHash(), hash);
 }

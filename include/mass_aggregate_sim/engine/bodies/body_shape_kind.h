@@ -15,10 +15,13 @@
 //                                the first entry of the ray (unit direction) into the shape; a ray
 //                                starting inside does not hit
 //   describe(k)                  how it is drawn (ShapePrimitive parts in the shape's frame)
+//   submerged(k, frame, surface) the part of the shape placed at frame below a liquid surface,
+//                                exact (its volume and first moment: buoyancy that rights a body)
 
 #include <optional>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/bodies/submerged_volume.h"
 #include "mass_aggregate_sim/engine/collision/shape_parts.h"
 #include "mass_aggregate_sim/engine/core/status.h"
 #include "mass_aggregate_sim/engine/core/transform.h"

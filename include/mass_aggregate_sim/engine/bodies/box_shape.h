@@ -24,6 +24,8 @@ struct BodyShapeKind<BoxShape> {
   static std::optional<RayShapeHit> raycast(const BoxShape& box, const Frame& frame,
                                             const Vec3& origin, const Vec3& direction, Real max_t);
   static std::vector<ShapePrimitive> describe(const BoxShape& box);
+  static SubmergedVolume submerged(const BoxShape& box, const Frame& frame,
+                                   const LiquidSurface& surface);
 };
 
 }  // namespace engine

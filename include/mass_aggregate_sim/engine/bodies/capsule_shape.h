@@ -27,6 +27,8 @@ struct BodyShapeKind<CapsuleShape> {
   static std::optional<RayShapeHit> raycast(const CapsuleShape& capsule, const Frame& frame,
                                             const Vec3& origin, const Vec3& direction, Real max_t);
   static std::vector<ShapePrimitive> describe(const CapsuleShape& capsule);
+  static SubmergedVolume submerged(const CapsuleShape& capsule, const Frame& frame,
+                                   const LiquidSurface& surface);
 };
 
 }  // namespace engine

@@ -24,6 +24,8 @@ struct BodyShapeKind<SphereShape> {
   static std::optional<RayShapeHit> raycast(const SphereShape& sphere, const Frame& frame,
                                             const Vec3& origin, const Vec3& direction, Real max_t);
   static std::vector<ShapePrimitive> describe(const SphereShape& sphere);
+  static SubmergedVolume submerged(const SphereShape& sphere, const Frame& frame,
+                                   const LiquidSurface& surface);
 };
 
 }  // namespace engine

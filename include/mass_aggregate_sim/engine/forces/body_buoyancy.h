@@ -5,14 +5,27 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
-// Buoyancy (buoyancy.h) of a body, at its centre of mass: with s = up.c - surface_height the
-// centre's height above the surface, F = rho V |g| f(s) up, f the submerged fraction (1 below
-// -max_depth, 0 above max_depth, linear between). V <= 0 takes the volume of the body's shapes
-// when it is added; a negative max_depth takes the body's reach along up (its bounding radius).
-// Acting at the centre of mass it floats a body at the right depth but does not right it.
+// How a body's buoyancy finds the liquid it displaces.
+enum class BuoyancyModel {
+  // The part of each of its shapes below the surface, exact (BodyShapeKind::submerged), pushed
+  // up at its centroid, the centre of buoyancy: F = rho |g| V_sub up at c_sub. Off the line
+  // through the centre of mass it turns the body: a floating plank rights itself, a log of half
+  // the liquid's density rolls onto an edge. A volume given (> 0) scales the shapes' part so that
+  // the whole body displaces that much.
+  kShapes,
+  // The particles' law (buoyancy.h) at the centre of mass: with s = up.c - surface_height,
+  // F = rho V |g| f(s) up, f the submerged fraction (1 below -max_depth, 0 above max_depth,
+  // linear between). It floats a body at a depth but never turns it.
+  kCentre,
+};
+
+// Buoyancy of a body in a liquid filling the half-space below surface_height along up. V <= 0
+// takes the volume of the body's shapes when it is added; for kCentre a negative max_depth takes
+// the body's reach (its bounding radius), and kShapes takes no max_depth.
 struct BodyBuoyancy {
   BodyId body;
-  Real max_depth = -1.0;  // m
+  BuoyancyModel model = BuoyancyModel::kShapes;
+  Real max_depth = -1.0;  // m (kCentre)
   Real volume = 0.0;      // m^3
   Real liquid_density = 1000.0;
   Real surface_height = 0.0;
