@@ -28,11 +28,11 @@ from dynamic_reconfigure.srv import Reconfigure
 from std_srvs.srv import SetBool, Trigger, TriggerRequest
 
 from mass_aggregate_sim.msg import Command, StepAction, StepGoal
-from mass_aggregate_sim.srv import (AddBodySpring, AddJoint, AddLink, ApplyBodyImpulse,
-                                    ApplyBodyWrench,
-                                    ApplyForce, ApplyImpulse, Remove, RemoveBody, RemoveJoint,
-                                    RemoveLink, SetBodyState, SetHingeMotor, SetState, Spawn,
-                                    SpawnBody)
+from mass_aggregate_sim.srv import (AddBodySpring, AddForceField, AddJoint, AddLink,
+                                    ApplyBodyImpulse, ApplyBodyWrench,
+                                    ApplyForce, ApplyImpulse, Remove, RemoveBody,
+                                    RemoveForceField, RemoveJoint, RemoveLink, SetBodyState,
+                                    SetHingeMotor, SetState, Spawn, SpawnBody)
 
 SERVICES = {
     'spawn': Spawn,
@@ -51,6 +51,8 @@ SERVICES = {
     'remove_joint': RemoveJoint,
     'set_hinge_motor': SetHingeMotor,
     'add_body_spring': AddBodySpring,
+    'add_force_field': AddForceField,
+    'remove_force_field': RemoveForceField,
 }
 CHECKPOINTS = ('pause', 'step')
 WAIT = 60.0  # s of wall time for any one answer

@@ -2,8 +2,8 @@
 """Bodies and joints through the node's real services and topics (rostest:
 test/body_services.test): analytic impulses and wrenches, in the world and in a turned frame, a
 DURATION wrench's exact step count, a hinged pendulum's period, ~joint_states with a motor changed
-at runtime, a body spring added at runtime, ~contacts, ~bodies, /tf, queries, and hostile requests
-refused with nothing changed."""
+at runtime, a body spring and buoyancy added at runtime, ~contacts, ~bodies, /tf, queries, and
+hostile requests refused with nothing changed."""
 import math
 import sys
 import threading
@@ -19,7 +19,7 @@ from sensor_msgs.msg import JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
 from mass_aggregate_sim.msg import BodyContact, BodyContactArray, BodySpec, JointEndSpec
-from mass_aggregate_sim.srv import (AddBodySpringRequest, AddJointRequest,
+from mass_aggregate_sim.srv import (AddBodySpringRequest, AddForceFieldRequest, AddJointRequest,
                                     ApplyBodyImpulseRequest, ApplyBodyWrenchRequest,
                                     GetBodyStateRequest, OverlapRequest, RaycastRequest,
                                     RaycastResponse, SetBodyStateRequest, SetHingeMotorRequest)
@@ -248,6 +248,41 @@ class BodyServicesTest(unittest.TestCase):
         self.assertTrue(removed.success, removed.message)
         self.assertTrue(self.sim.step(10).success)
         self.assertLess(self.state('hung').twist.linear.z, -0.5)
+
+    def test_a_plank_given_buoyancy_at_runtime_floats_level(self):
+        # A 2 x 2 x 0.4 m plank of half the water's density (800 kg) let go tilted 20 degrees
+        # about x, in water whose surface is z' = 0.5 of the 'tilted' frame (z = 3.5 in the
+        # world): it rights itself and floats half under, its centre at the surface. Then
+        # ~remove_force_field takes the water away and it falls.
+        half_turn = math.radians(20.0) / 2.0
+        plank = body('plank', x=(40.0, 0.0, 3.5),
+                     q=(math.sin(half_turn), 0.0, 0.0, math.cos(half_turn)), mass=800.0,
+                     shapes=[shape('box', (1.0, 1.0, 0.2))])
+        plank.never_sleep = True
+        self.spawn(plank)
+        water = AddForceFieldRequest(type='buoyancy', body_names=['plank'],
+                                     liquid_density=1000.0, surface_height=0.5, frame_id='tilted')
+        floats = self.sim.add_force_field(water)
+        self.assertTrue(floats.success, floats.message)
+        self.assertEqual(len(floats.force_ids), 1)
+        drag = self.sim.add_force_field(AddForceFieldRequest(
+            type='drag', body_names=['plank'], k1=6000.0, angular=2000.0))
+        self.assertTrue(drag.success, drag.message)
+        self.assertTrue(self.sim.step(1000).success)
+        settled = self.state('plank')
+        q = settled.pose.orientation
+        tilt = math.degrees(2.0 * math.asin(min(1.0, math.sqrt(q.x * q.x + q.y * q.y))))
+        sys.stderr.write('[ buoyancy ] plank at z %.5f (surface 3.5), tilted %.4f degrees\n'
+                         % (settled.pose.position.z, tilt))
+        self.assertAlmostEqual(settled.pose.position.z, 3.5, delta=1e-3)
+        self.assertLess(tilt, 0.1)
+        removed = self.sim.remove_force_field(force_id=floats.force_ids[0])
+        self.assertTrue(removed.success, removed.message)
+        again = self.sim.remove_force_field(force_id=floats.force_ids[0])
+        self.assertFalse(again.success)
+        self.assertIn('no drag or buoyancy', again.message)
+        self.assertTrue(self.sim.step(20).success)
+        self.assertLess(self.state('plank').twist.linear.z, -0.5)
 
     def test_states_relative_to_another_body(self):
         self.spawn(body('base', x=(0.0, 40.0, 0.0), q=(0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5))),
@@ -520,6 +555,30 @@ class BodyServicesTest(unittest.TestCase):
         ]
         for what, request in spring_cases:
             refused.append(('add_body_spring ' + what, self.sim.add_body_spring(request)))
+
+        def field(**fields):
+            r = AddForceFieldRequest(type='buoyancy', body_names=['target'], liquid_density=1000.0)
+            for name, value in fields.items():
+                setattr(r, name, value)
+            return r
+        field_cases = [
+            ('unknown type', field(type='wind')),
+            ('no target', field(body_names=[])),
+            ('unknown body after a good one', field(body_names=['target', 'ghost'])),
+            ('unknown particle id', field(particle_ids=[987654321])),
+            ('particle without a depth', field(body_names=[], particle_names=['bead'])),
+            ('depth for the shapes model', field(max_depth=0.2)),
+            ('unknown model', field(model='center')),
+            ('NaN density', field(liquid_density=NAN)),
+            ('Inf surface', field(surface_height=INF)),
+            ('NaN up', field(up=vec(NAN, 0.0, 1.0))),
+            ('negative drag', field(type='drag', k1=-1.0)),
+            ('unknown frame', field(frame_id='nowhere')),
+        ]
+        for what, request in field_cases:
+            refused.append(('add_force_field ' + what, self.sim.add_force_field(request)))
+        refused.append(('remove_force_field unknown id',
+                        self.sim.remove_force_field(force_id=987654)))
         refused += [
             ('impulse NaN', self.sim.apply_body_impulse(impulse('target', (NAN, 0.0, 0.0)))),
             ('impulse Inf point', self.sim.apply_body_impulse(

@@ -15,7 +15,8 @@ from geometry_msgs.msg import Vector3
 from std_srvs.srv import SetBool
 
 from mass_aggregate_sim.msg import JointEndSpec
-from mass_aggregate_sim.srv import (AddBodySpring, AddBodySpringRequest, AddJoint,
+from mass_aggregate_sim.srv import (AddBodySpring, AddBodySpringRequest, AddForceField,
+                                    AddForceFieldRequest, AddJoint,
                                     AddJointRequest, ApplyBodyImpulse,
                                     ApplyBodyImpulseRequest, ApplyBodyWrench,
                                     ApplyBodyWrenchRequest, ApplyForce, ApplyForceRequest,
@@ -72,6 +73,9 @@ class FrameLookupTest(unittest.TestCase):
                 ('add_body_spring', AddBodySpring, AddBodySpringRequest(
                     type='spring', a=end(JointEndSpec.BODY, 'crate'), frame_id='nowhere',
                     stiffness=1.0, rest_length=-1.0)),
+                ('add_force_field', AddForceField, AddForceFieldRequest(
+                    type='buoyancy', body_names=['crate'], liquid_density=1000.0,
+                    frame_id='nowhere')),
                 ('raycast', Raycast, RaycastRequest(
                     frame_id='nowhere', direction=Vector3(1.0, 0.0, 0.0), max_distance=1.0)),
                 ('overlap', Overlap, OverlapRequest(

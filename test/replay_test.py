@@ -26,7 +26,8 @@ from dynamic_reconfigure.client import Client
 from geometry_msgs.msg import Point, TransformStamped, Vector3, Wrench
 
 from mass_aggregate_sim.msg import JointEndSpec, StepAction, StepGoal
-from mass_aggregate_sim.srv import (AddBodySpringRequest, AddJointRequest, AddLinkRequest,
+from mass_aggregate_sim.srv import (AddBodySpringRequest, AddForceFieldRequest, AddJointRequest,
+                                    AddLinkRequest,
                                     ApplyBodyImpulseRequest,
                                     ApplyBodyWrenchRequest, ApplyForceRequest,
                                     SetBodyStateRequest, SetHingeMotorRequest, SetStateRequest)
@@ -133,6 +134,17 @@ class ReplayTest(unittest.TestCase):
             b=end(JointEndSpec.PARTICLE, 'spring_5'), frame_id='replay_frame',
             anchor=Point(0.2, 0.1, 0.0), stiffness=25.0, damping=0.5, rest_length=0.5))
         self.assertTrue(bungee.success, bungee.message)
+        # Water around the crate, its surface given in the turned frame, with drag on a particle
+        # and the capsule; the capsule's drag removed again.
+        water = sim.add_force_field(AddForceFieldRequest(
+            type='buoyancy', body_names=['crate'], liquid_density=800.0, surface_height=3.9,
+            up=Vector3(0.1, 0.0, 1.0), frame_id='replay_frame'))
+        self.assertTrue(water.success, water.message)
+        drag = sim.add_force_field(AddForceFieldRequest(
+            type='drag', particle_names=['spring_2'], body_ids=[bodies.ids[1]], k1=0.3, k2=0.05,
+            angular=0.02))
+        self.assertTrue(drag.success, drag.message)
+        self.assertTrue(sim.remove_force_field(force_id=drag.force_ids[1]).success)
         self.assertTrue(sim.apply_body_wrench(ApplyBodyWrenchRequest(
             name='crate', reference_point=Point(1.2, 2.0, 4.0), wrench=Wrench(
                 Vector3(0.0, 0.0, 40.0), Vector3(0.0, 0.0, 1.0)),

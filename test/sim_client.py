@@ -6,11 +6,11 @@ from std_srvs.srv import SetBool, Trigger
 
 from mass_aggregate_sim.msg import (BodyArray, BodyShapeSpec, BodySpec, JointEndSpec,
                                     ParticleArray, ParticleSpec, SimStats)
-from mass_aggregate_sim.srv import (AddBodySpring, AddJoint, AddLink, ApplyBodyImpulse,
-                                    ApplyBodyWrench, ApplyForce, ApplyImpulse, GetBodyState,
-                                    Overlap, Raycast,
-                                    Remove, RemoveBody, RemoveJoint, RemoveLink, SetBodyState,
-                                    SetHingeMotor, SetState, Spawn, SpawnBody, Step)
+from mass_aggregate_sim.srv import (AddBodySpring, AddForceField, AddJoint, AddLink,
+                                    ApplyBodyImpulse, ApplyBodyWrench, ApplyForce, ApplyImpulse,
+                                    GetBodyState, Overlap, Raycast,
+                                    Remove, RemoveBody, RemoveForceField, RemoveJoint, RemoveLink,
+                                    SetBodyState, SetHingeMotor, SetState, Spawn, SpawnBody, Step)
 
 SERVICES = {
     'spawn': Spawn, 'remove': Remove, 'set_state': SetState, 'apply_force': ApplyForce,
@@ -22,7 +22,8 @@ BODY_SERVICES = {
     'get_body_state': GetBodyState, 'apply_body_wrench': ApplyBodyWrench,
     'apply_body_impulse': ApplyBodyImpulse, 'add_joint': AddJoint, 'remove_joint': RemoveJoint,
     'set_hinge_motor': SetHingeMotor, 'raycast': Raycast, 'overlap': Overlap,
-    'add_body_spring': AddBodySpring,
+    'add_body_spring': AddBodySpring, 'add_force_field': AddForceField,
+    'remove_force_field': RemoveForceField,
 }
 
 

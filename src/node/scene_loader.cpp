@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/integrators/integrator.h"
+#include "mass_aggregate_sim/node/force_fields.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/scene_bodies.h"
@@ -421,13 +422,9 @@ class SceneBuilder {
                   {"type", "bodies", "model", "max_depth", "volume", "liquid_density",
                    "surface_height", "up"});
         engine::BodyBuoyancy buoyancy;
-        const std::string model = stringOr(force, k, "model", "shapes");
-        if (model == "centre") {
-          buoyancy.model = engine::BuoyancyModel::kCentre;
-        } else if (model != "shapes") {
-          throw ParamError(k + ".model",
-                           "unknown model " + quoteInput(model) + " (known: shapes, centre)");
-        }
+        const auto model = parseBuoyancyModel(stringOr(force, k, "model", "shapes"));
+        if (!model) throw ParamError(k + ".model", model.message());
+        buoyancy.model = *model;
         readBuoyancy(force, k, buoyancy);
         addOnBodies(buoyancy, force, k);
       } else if (type == "drag") {

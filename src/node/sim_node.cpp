@@ -84,6 +84,9 @@ SimNode::SimNode(ros::NodeHandle& private_nh, const LoadedScene& scene, const No
   services_.push_back(nh_.advertiseService("add_joint", &SimNode::onAddJoint, this));
   services_.push_back(nh_.advertiseService("remove_joint", &SimNode::onRemoveJoint, this));
   services_.push_back(nh_.advertiseService("add_body_spring", &SimNode::onAddBodySpring, this));
+  services_.push_back(nh_.advertiseService("add_force_field", &SimNode::onAddForceField, this));
+  services_.push_back(
+      nh_.advertiseService("remove_force_field", &SimNode::onRemoveForceField, this));
   services_.push_back(nh_.advertiseService("set_hinge_motor", &SimNode::onSetHingeMotor, this));
   services_.push_back(nh_.advertiseService("raycast", &SimNode::onRaycast, this));
   services_.push_back(nh_.advertiseService("overlap", &SimNode::onOverlap, this));

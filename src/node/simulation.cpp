@@ -167,11 +167,12 @@ Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impuls
   return Vec3(world_.particles().velocities().col(*world_.particles().find(*id)));
 }
 
-Status Simulation::checkLinkRoom() const {
+Status Simulation::checkLinkRoom(const std::size_t more) const {
   const std::size_t links =
       world_.generators().size() + world_.bodyGenerators().size() + world_.links().size();
-  if (links >= limits_.max_links) {
+  if (links + more > limits_.max_links) {
     return Status::error("already " + std::to_string(links) + " links and force generators, " +
+                         (more > 1 ? std::to_string(more) + " more exceed " : std::string()) +
                          "~max_links (" + std::to_string(limits_.max_links) + ")");
   }
   return Status::ok();
@@ -187,6 +188,19 @@ Result<GeneratorId> Simulation::addBodySpring(const BodySpringRequest& request) 
   const Status room = checkLinkRoom();
   if (!room) return room;
   return node::addBodySpring(world_, request);
+}
+
+Result<std::vector<GeneratorId>> Simulation::addForceFields(const ForceFieldRequest& request) {
+  const Status room = checkLinkRoom(request.particles.size() + request.bodies.size());
+  if (!room) return room;
+  return node::addForceFields(world_, request);
+}
+
+Status Simulation::removeForceField(const GeneratorId id) {
+  if (!isForceField(world_, id)) {
+    return Status::error("no drag or buoyancy with id " + std::to_string(id));
+  }
+  return world_.removeGenerator(id);
 }
 
 Status Simulation::removeLink(const GeneratorId id) {

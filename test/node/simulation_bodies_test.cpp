@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mass_aggregate_sim/node/force_field_conversions.h"
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/simulation.h"
 
@@ -564,6 +565,115 @@ TEST(SimulationBodiesTest, BodySpringsAreAddedRefusedCountedAndRemoved) {
   ASSERT_TRUE(sim.removeLink(*spring));
   ASSERT_TRUE(sim.removeLink(*second));
   EXPECT_TRUE(sim.world().bodyGenerators().empty());
+}
+
+// ~add_force_field's requests: drag and buoyancy on particles and bodies, all or none (a bad
+// target or value anywhere in the request adds nothing), ~max_links counting each, the surface
+// placed from the request's frame into the world, ~remove_force_field removing only these.
+TEST(SimulationBodiesTest, ForceFieldsAreAddedAllOrNothingCountedAndRemoved) {
+  SimulationLimits limits;
+  limits.max_links = 4;
+  Simulation sim(emptyScene(Vec3(0, 0, -9.81)), limits);
+  BodySpec raft_spec = cube("raft", Vec3(0, 0, 0.3), 500.0);
+  raft_spec.can_sleep = false;  // asleep, it would stop within a centimetre of its depth
+  ASSERT_TRUE(sim.spawnBodies({raft_spec, cube("crate", Vec3(5, 0, 5))}));
+  ForceFieldRequest buoyancy;
+  buoyancy.type = ForceFieldType::kBuoyancy;
+  buoyancy.bodies = {BodyRef{0, "raft"}};
+  buoyancy.liquid_density = 1000.0;
+  const auto with = [&](auto change) {
+    ForceFieldRequest r = buoyancy;
+    change(r);
+    return r;
+  };
+  const Fingerprint before(sim);
+  const std::vector<std::pair<std::string, ForceFieldRequest>> hostile = {
+      {"no target", with([](ForceFieldRequest& r) { r.bodies.clear(); })},
+      {"unknown body after a good one", with([](ForceFieldRequest& r) {
+         r.bodies.push_back(BodyRef{0, "nobody"});
+       })},
+      {"unknown particle", with([](ForceFieldRequest& r) {
+         r.particles = {{0, "sand"}};
+       })},
+      {"a particle without a depth",  // the particles' law needs max_depth > 0
+       with([](ForceFieldRequest& r) {
+         r.particles = {{0, "grain"}};
+       })},
+      {"a depth for the shapes' model", with([](ForceFieldRequest& r) { r.max_depth = 0.2; })},
+      {"negative density", with([](ForceFieldRequest& r) { r.liquid_density = -1.0; })},
+      {"NaN surface", with([](ForceFieldRequest& r) { r.surface_height = kNaN; })},
+      {"infinite up", with([](ForceFieldRequest& r) { r.up.x() = kInf; })},
+      {"negative drag", with([](ForceFieldRequest& r) {
+         r.type = ForceFieldType::kDrag;
+         r.k1 = -1.0;
+       })},
+      {"five against ~max_links 4", with([](ForceFieldRequest& r) {
+         r.bodies = {{0, "raft"}, {0, "crate"}, {0, "raft"}, {0, "crate"}, {0, "raft"}};
+       })},
+  };
+  for (const auto& [what, request] : hostile) {
+    const auto refused = sim.addForceFields(request);
+    EXPECT_FALSE(refused) << what;
+    EXPECT_FALSE(refused.message().empty()) << what;
+    EXPECT_TRUE(Fingerprint(sim) == before) << what << ": " << refused.message();
+    EXPECT_TRUE(sim.world().bodyGenerators().empty()) << what;
+    EXPECT_EQ(sim.world().generators().size(), 0u) << what;
+  }
+  EXPECT_NE(sim.addForceFields(hostile[1].second).message().find("bodies[1]: no body named"),
+            std::string::npos);
+  EXPECT_NE(sim.addForceFields(hostile[9].second).message().find("5 more exceed ~max_links (4)"),
+            std::string::npos)
+      << sim.addForceFields(hostile[9].second).message();
+  EXPECT_FALSE(parseForceFieldType("wind"));
+  EXPECT_NE(parseForceFieldType("wind").message().find("drag, buoyancy"), std::string::npos);
+  EXPECT_FALSE(parseBuoyancyModel("center"));
+
+  // The surface 0.5 m above the origin of a frame turned upside down about x and raised 1 m: up
+  // is -z in the world, the surface the plane z = 0.5 (the liquid above it).
+  ReferenceFrame frame;
+  frame.pose.position = Vec3(0, 0, 1);
+  frame.pose.rotation = Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitX()));
+  ForceFieldRequest placed = buoyancy;
+  placed.surface_height = 0.5;
+  AddForceField::Request msg;
+  placeForceFieldRequest(frame, placed, msg);
+  EXPECT_NEAR((placed.up - Vec3(0, 0, -1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(placed.surface_height, -0.5, 1e-12);  // -z . (0, 0, 0.5) = -0.5
+  EXPECT_TRUE(msg.frame_id.empty());
+  EXPECT_DOUBLE_EQ(msg.surface_height, -0.5);
+
+  const auto floats = sim.addForceFields(buoyancy);
+  ASSERT_TRUE(floats) << floats.message();
+  ForceFieldRequest drag;
+  drag.particles = {{0, "grain"}};
+  drag.bodies = {{0, "crate"}};
+  drag.k1 = 0.5;
+  drag.angular = 0.1;
+  const auto drags = sim.addForceFields(drag);
+  ASSERT_TRUE(drags) << drags.message();
+  ASSERT_EQ((*drags).size(), 2u);
+  EXPECT_EQ(sim.world().generators().of<engine::Drag>()[0].id, (*drags)[0]);  // particles first
+  EXPECT_EQ(sim.world().bodyGenerators().of<engine::BodyDrag>()[0].id, (*drags)[1]);
+  ForceFieldRequest settle;
+  settle.bodies = {{0, "raft"}};
+  settle.k1 = 3000.0;
+  settle.angular = 100.0;
+  const auto settles = sim.addForceFields(settle);
+  ASSERT_TRUE(settles) << settles.message();
+  EXPECT_FALSE(sim.addForceFields(settle));  // ~max_links: 4 taken
+  // The 500 kg cube floats half under, its centre at the surface.
+  for (int step = 0; step < 500; ++step) sim.step();
+  const auto raft = *sim.world().bodies().findByName("raft");
+  EXPECT_NEAR(sim.world().bodies().position(*sim.world().bodies().find(raft)).z(), 0.0, 1e-3);
+
+  EXPECT_FALSE(sim.removeForceField(12345));
+  EXPECT_NE(sim.removeForceField(12345).message().find("no drag or buoyancy with id 12345"),
+            std::string::npos);
+  for (const auto id : *floats) ASSERT_TRUE(sim.removeForceField(id));
+  for (const auto id : *drags) ASSERT_TRUE(sim.removeForceField(id));
+  for (const auto id : *settles) ASSERT_TRUE(sim.removeForceField(id));
+  EXPECT_TRUE(sim.world().bodyGenerators().empty());
+  EXPECT_EQ(sim.world().generators().size(), 0u);
 }
 
 }  // namespace

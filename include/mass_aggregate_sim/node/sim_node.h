@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "mass_aggregate_sim/AddBodySpring.h"
+#include "mass_aggregate_sim/AddForceField.h"
 #include "mass_aggregate_sim/AddJoint.h"
 #include "mass_aggregate_sim/AddLink.h"
 #include "mass_aggregate_sim/ApplyBodyImpulse.h"
@@ -33,6 +34,7 @@
 #include "mass_aggregate_sim/Raycast.h"
 #include "mass_aggregate_sim/Remove.h"
 #include "mass_aggregate_sim/RemoveBody.h"
+#include "mass_aggregate_sim/RemoveForceField.h"
 #include "mass_aggregate_sim/RemoveJoint.h"
 #include "mass_aggregate_sim/RemoveLink.h"
 #include "mass_aggregate_sim/SetBodyState.h"
@@ -136,6 +138,8 @@ class SimNode {
   bool onApplyBodyImpulse(ApplyBodyImpulse::Request& req, ApplyBodyImpulse::Response& res);
   bool onAddJoint(AddJoint::Request& req, AddJoint::Response& res);
   bool onAddBodySpring(AddBodySpring::Request& req, AddBodySpring::Response& res);
+  bool onAddForceField(AddForceField::Request& req, AddForceField::Response& res);
+  bool onRemoveForceField(RemoveForceField::Request& req, RemoveForceField::Response& res);
   bool onRemoveJoint(RemoveJoint::Request& req, RemoveJoint::Response& res);
   bool onSetHingeMotor(SetHingeMotor::Request& req, SetHingeMotor::Response& res);
   bool onRaycast(Raycast::Request& req, Raycast::Response& res);

@@ -9,6 +9,7 @@
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "mass_aggregate_sim/node/body_requests.h"
 #include "mass_aggregate_sim/node/body_springs.h"
+#include "mass_aggregate_sim/node/force_fields.h"
 #include "mass_aggregate_sim/node/joint_requests.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/settings.h"
@@ -81,6 +82,9 @@ class Simulation {
   // Links and springs on bodies count together against ~max_links; removeLink removes either.
   engine::Result<engine::GeneratorId> addLink(const LinkRequest& request);
   engine::Result<engine::GeneratorId> addBodySpring(const BodySpringRequest& request);
+  // Drag or buoyancy on each particle and body named, all or none, within ~max_links.
+  engine::Result<std::vector<engine::GeneratorId>> addForceFields(const ForceFieldRequest& request);
+  engine::Status removeForceField(engine::GeneratorId id);
   engine::Status removeLink(engine::GeneratorId id);
 
   // One fixed step: sustained forces are added, then the world steps.
@@ -125,7 +129,8 @@ class Simulation {
 
  private:
   // Refused when ~max_links links and force generators exist already.
-  engine::Status checkLinkRoom() const;
+  // Room under ~max_links for `more` links and force generators.
+  engine::Status checkLinkRoom(std::size_t more = 1) const;
 
   struct SustainedForce {
     engine::ParticleId particle;

@@ -106,6 +106,11 @@ class World {
   // LinkKind<K>::validate): live distinct particles, finite values in range. ---
   template <typename Kind>
   Result<GeneratorId> addGenerator(Kind generator);
+  // What addGenerator would say, without adding it (a request of several can check them all).
+  template <typename Kind>
+  Status checkGenerator(Kind generator) const {
+    return ForceKind<Kind>::validate(generator, particles_);
+  }
   template <typename Kind>
   Result<GeneratorId> addLink(Kind link);
   // Removes a force generator (on particles or on bodies) or a link.
@@ -153,6 +158,10 @@ class World {
   // their bodies and particles; they wake the bodies they act on.
   template <typename Kind>
   Result<GeneratorId> addBodyGenerator(Kind generator);
+  template <typename Kind>
+  Status checkBodyGenerator(Kind generator) const {
+    return BodyForceKind<Kind>::validate(generator, JointScene{bodies_, particles_});
+  }
   const BodyForceGenerators& bodyGenerators() const { return body_generators_; }
 
   // --- joints (JointKinds: BallJoint, HingeJoint, FixedJoint, DistanceJoint), between two
