@@ -62,6 +62,22 @@ std::variant<engine::BodyDrag, engine::BodyBuoyancy> onBody(const ForceFieldRequ
   return buoyancy;
 }
 
+// The generators `make` gives for each of `refs` (resolved by `resolve`), each checked by
+// `check`; the first refusal, named by `field` and the target's index.
+template <typename Refs, typename Resolve, typename Make, typename Check, typename Generators>
+Status prepare(const Refs& refs, const char* field, Resolve&& resolve, Make&& make, Check&& check,
+               Generators& out) {
+  for (std::size_t k = 0; k < refs.size(); ++k) {
+    const std::string where = std::string(field) + "[" + std::to_string(k) + "]: ";
+    const auto id = resolve(refs[k]);
+    if (!id) return Status::error(where + id.message());
+    out.push_back(make(*id));
+    const Status valid = std::visit(check, out.back());
+    if (!valid) return Status::error(where + valid.message());
+  }
+  return Status::ok();
+}
+
 }  // namespace
 
 Result<std::vector<GeneratorId>> addForceFields(engine::World& world,
@@ -70,23 +86,18 @@ Result<std::vector<GeneratorId>> addForceFields(engine::World& world,
     return Status::error("name at least one particle or body");
   }
   std::vector<std::variant<engine::Drag, engine::Buoyancy>> on_particles;
-  for (std::size_t k = 0; k < request.particles.size(); ++k) {
-    const auto id = resolveParticle(world, request.particles[k]);
-    if (!id) return Status::error("particles[" + std::to_string(k) + "]: " + id.message());
-    on_particles.push_back(onParticle(request, *id));
-    const Status valid =
-        std::visit([&](const auto& g) { return world.checkGenerator(g); }, on_particles.back());
-    if (!valid) return Status::error("particles[" + std::to_string(k) + "]: " + valid.message());
-  }
+  const Status particles = prepare(
+      request.particles, "particles",
+      [&](const ParticleRef& r) { return resolveParticle(world, r); },
+      [&](const engine::ParticleId id) { return onParticle(request, id); },
+      [&](const auto& g) { return world.checkGenerator(g); }, on_particles);
+  if (!particles) return particles;
   std::vector<std::variant<engine::BodyDrag, engine::BodyBuoyancy>> on_bodies;
-  for (std::size_t k = 0; k < request.bodies.size(); ++k) {
-    const auto id = resolveBody(world, request.bodies[k]);
-    if (!id) return Status::error("bodies[" + std::to_string(k) + "]: " + id.message());
-    on_bodies.push_back(onBody(request, *id));
-    const Status valid =
-        std::visit([&](const auto& g) { return world.checkBodyGenerator(g); }, on_bodies.back());
-    if (!valid) return Status::error("bodies[" + std::to_string(k) + "]: " + valid.message());
-  }
+  const Status bodies = prepare(
+      request.bodies, "bodies", [&](const BodyRef& r) { return resolveBody(world, r); },
+      [&](const engine::BodyId id) { return onBody(request, id); },
+      [&](const auto& g) { return world.checkBodyGenerator(g); }, on_bodies);
+  if (!bodies) return bodies;
   // Every one checked: the engine takes each as it said it would.
   std::vector<GeneratorId> ids;
   for (const auto& generator : on_particles) {
