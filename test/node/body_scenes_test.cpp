@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -159,6 +160,22 @@ TEST(BodyScenesTest, TheCrateHangsTheRaftFloatsAndTheBlockSinks) {
   // Half the raft's volume under water: its centre at the surface (asleep within a centimetre).
   EXPECT_NEAR(centre(world, "raft").z(), 0.0, 0.01);
   EXPECT_NEAR(centre(world, "block").z(), -3.0 + 0.25, 0.01);
+  // The square log of half the water's density on an edge (its section's diagonal upright), the
+  // capsule lying along the surface; both half under, their centres at the surface.
+  const auto turn = [&](const char* name) {
+    const engine::BodyStore& bodies = world.bodies();
+    return bodies.pose(*bodies.find(*bodies.findByName(name))).rotation;
+  };
+  const Vec3 side = turn("square_log") * Vec3::UnitY();
+  std::printf(
+      "[ scene ] body_forces: square log rolled %.2f degrees, round log's axis %.3f "
+      "degrees from level\n",
+      std::atan2(side.z(), side.y()) * 180.0 / M_PI,
+      std::asin((turn("round_log") * Vec3::UnitZ()).z()) * 180.0 / M_PI);
+  EXPECT_NEAR(std::atan2(side.z(), side.y()) * 180.0 / M_PI, 45.0, 1.0);
+  EXPECT_NEAR(std::asin((turn("round_log") * Vec3::UnitZ()).z()) * 180.0 / M_PI, 0.0, 1.0);
+  EXPECT_NEAR(centre(world, "square_log").z(), 0.0, 0.01);
+  EXPECT_NEAR(centre(world, "round_log").z(), 0.0, 0.01);
   const engine::ParticleStore& particles = world.particles();
   const Vec3 bead = particles.positions().col(*particles.find(*particles.findByName("bead")));
   EXPECT_LT(bead.z(), centre(world, "crate").z() - 0.25 - 0.3);  // below it, the bungee taut
