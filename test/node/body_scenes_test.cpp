@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -51,6 +52,22 @@ void run(engine::World& world, const std::string& name, const double seconds) {
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
     EXPECT_TRUE(world.bodies().position(i).allFinite()) << name << " body " << i;
   }
+}
+
+// Every scene the package ships is within its integrators' limits: springs, drags and springs
+// and drags on bodies (World::stabilityReport()), at its own settings.
+TEST(BodyScenesTest, EveryShippedSceneIsStableByItsReport) {
+  const std::string here = __FILE__;
+  const std::filesystem::path scenes = here.substr(0, here.rfind("/test/node/")) + "/config/scenes";
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(scenes)) {
+    if (entry.path().extension() != ".yaml") continue;
+    const std::string name = entry.path().stem().string();
+    const engine::World world = loadShipped(name);
+    EXPECT_TRUE(world.stabilityReport().stable) << name << ": " << world.stabilityReport().message;
+    ++count;
+  }
+  EXPECT_GE(count, 16);
 }
 
 TEST(BodyScenesTest, TheBoxStackStandsAndSleeps) {

@@ -30,5 +30,17 @@ void BodyForceKind<BodyDrag>::accumulate(const std::vector<BodyDrag>& drags,
   }
 }
 
+// -k1 v on the mass, -angular w about the axis of least inertia (the fastest to decay).
+void BodyForceKind<BodyDrag>::decay(const std::vector<BodyDrag>& drags, const BodyForceScene& scene,
+                                    std::vector<DecayTerm>& terms) {
+  const BodyStore& bodies = scene.bodies();
+  for (const BodyDrag& drag : drags) {
+    const std::size_t i = bodies.denseIndexUnchecked(drag.body);
+    terms.push_back(DecayTerm{drag.id, drag.k1 * bodies.inverseMass(i), false});
+    terms.push_back(
+        DecayTerm{drag.id, drag.angular * bodies.inversePrincipalInertia(i).maxCoeff(), true});
+  }
+}
+
 }  // namespace engine
 }  // namespace mass_aggregate_sim

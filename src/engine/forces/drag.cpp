@@ -26,6 +26,16 @@ void ForceKind<Drag>::accumulate(const std::vector<Drag>& drags, const ForceEval
   }
 }
 
+void ForceKind<Drag>::decay(const std::vector<Drag>& drags, const ParticleStore& particles,
+                            std::vector<DecayTerm>& terms) {
+  // -k1 v alone: the k2 |v| v part's rate grows with the speed, which no state-free bound holds.
+  const auto inverse_mass = particles.inverseMasses();
+  for (const Drag& drag : drags) {
+    const auto i = static_cast<Eigen::Index>(particles.denseIndexUnchecked(drag.particle));
+    terms.push_back(DecayTerm{drag.id, drag.k1 * inverse_mass[i], false});
+  }
+}
+
 void ForceKind<Drag>::linearise(const std::vector<Drag>& drags, ImplicitSystem& system) {
   for (const Drag& drag : drags) {
     const std::size_t a = system.index(drag.particle);

@@ -36,27 +36,55 @@ void nameSpring(StabilityReport& report, const GeneratorId id, const Real omega,
   report.limit = limit;
 }
 
-// Completes a report whose worst spring is set (generator, omega, coupled_omega, omega_h, limit)
-// from that spring's largest stable substep and the one that keeps the auto_substep margin.
+// Completes a report whose worst term is set (generator, omega, coupled_omega, omega_h, limit)
+// from its largest stable substep and the one that keeps the auto_substep margin. A spring's
+// omega is its angular frequency; a drag's (`decay`) its rate.
 void finishReport(StabilityReport& report, const char* what, const char* integrator, const Real dt,
-                  const int substeps, const Real stable_substep, const Real margin_substep) {
+                  const int substeps, const Real stable_substep, const Real margin_substep,
+                  const bool decay = false) {
   const Real h = dt / static_cast<Real>(substeps);
   report.substeps_with_margin = fewestSubsteps(dt, margin_substep);
   report.stable = stable_substep > 0.0 && h / stable_substep < 1.0;
   report.stable_dt = stable_substep * static_cast<Real>(substeps);
   report.substeps_needed = fewestSubsteps(dt, stable_substep);
   if (report.stable) return;
-  char text[360];
+  char measure[160];
+  if (decay) {
+    std::snprintf(measure, sizeof(measure), "rate*h = %.4g (rate = %.4g 1/s, h = %.4g s)",
+                  report.omega_h, report.omega, h);
+  } else {
+    std::snprintf(measure, sizeof(measure),
+                  "omega*h = %.4g (omega = %.4g rad/s, coupled %.4g rad/s, h = %.4g s)",
+                  report.omega_h, report.omega, report.coupled_omega, h);
+  }
+  char text[400];
   std::snprintf(text, sizeof(text),
-                "%s %u is unstable with %s: omega*h = %.4g (omega = %.4g rad/s, coupled "
-                "%.4g rad/s, h = %.4g s) exceeds the limit %.4g; stable for dt < %.4g s with "
-                "%d substeps%s",
-                what, static_cast<unsigned>(report.generator), integrator, report.omega_h,
-                report.omega, report.coupled_omega, h, report.limit, report.stable_dt, substeps,
+                "%s %u is unstable with %s: %s exceeds the limit %.4g; stable for dt < %.4g s "
+                "with %d substeps%s",
+                what, static_cast<unsigned>(report.generator), integrator, measure, report.limit,
+                report.stable_dt, substeps,
                 report.substeps_needed > 0
                     ? (", or with " + std::to_string(report.substeps_needed) + " substeps").c_str()
                     : ", and no substep count up to 1000 makes it stable");
   report.message = text;
+}
+
+// The report on the fastest of `terms` (decays under `integrator` at substeps of dt / substeps).
+StabilityReport decayReport(const std::vector<DecayTerm>& terms, const char* integrator_name,
+                            const Real limit, const Real dt, const int substeps) {
+  StabilityReport report;
+  report.substeps_used = substeps;
+  const DecayTerm* fastest = nullptr;
+  for (const DecayTerm& t : terms) {
+    if (t.rate > 0.0 && (!fastest || t.rate > fastest->rate)) fastest = &t;
+  }
+  if (!fastest) return report;
+  const Real h = dt / static_cast<Real>(substeps);
+  const Real rate = fastest->rate;
+  nameSpring(report, fastest->id, rate, rate, h, limit);
+  finishReport(report, fastest->angular ? "angular drag" : "drag", integrator_name, dt, substeps,
+               limit / rate, kAutoSubstepMargin * limit / rate, true);
+  return report;
 }
 
 }  // namespace
@@ -94,6 +122,22 @@ Real stabilityLimit(const Integrator integrator, const Real damping, const Real 
   if (damping >= 1.0 || h <= 0.0) return 0.0;
   // sqrt(d^-h - 1), with expm1 for accuracy when h ln d is small
   return std::sqrt(std::expm1(-h * std::log(damping)));
+}
+
+Real decayLimit(const Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kExplicitEuler:
+    case Integrator::kSemiImplicitEuler:
+      return 2.0;
+    case Integrator::kPositionVerlet:
+    case Integrator::kVelocityVerlet:
+      return 1.0;
+    case Integrator::kRk4:
+      return 2.785293563405282;  // the root of z^3 - 4 z^2 + 12 z - 24
+    case Integrator::kImplicitEuler:
+      return kInfinity;
+  }
+  return 0.0;
 }
 
 Real largestStableSubstep(const Integrator integrator, const Real omega, const Real damping,
@@ -260,6 +304,32 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
   finishReport(report, "point spring", integrator.c_str(), dt, substeps, worst_stable_substep,
                worst_margin_substep);
   return report;
+}
+
+StabilityReport analyseDragStability(const ForceGenerators& generators,
+                                     const ParticleStore& particles, const Integrator integrator,
+                                     const Real dt, const int substeps) {
+  std::vector<DecayTerm> terms;
+  generators.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    ForceKind<Kind>::decay(kind, particles, terms);
+  });
+  return decayReport(terms, integratorName(integrator), decayLimit(integrator), dt, substeps);
+}
+
+StabilityReport analyseBodyDragStability(const BodyForceGenerators& generators,
+                                         const BodyStore& bodies, const ParticleStore& particles,
+                                         const Real dt, const int substeps) {
+  std::vector<DecayTerm> terms;
+  const BodyForceScene scene(bodies, particles, nullptr, 0.0);
+  generators.forEach([&](const auto& kind) {
+    using Kind = typename std::decay_t<decltype(kind)>::value_type;
+    BodyForceKind<Kind>::decay(kind, scene, terms);
+  });
+  const std::string integrator =
+      std::string(integratorName(Integrator::kSemiImplicitEuler)) + " (the bodies' integrator)";
+  return decayReport(terms, integrator.c_str(), decayLimit(Integrator::kSemiImplicitEuler), dt,
+                     substeps);
 }
 
 StabilityReport bindingReport(const StabilityReport& a, const StabilityReport& b) {

@@ -175,6 +175,8 @@ const StabilityReport& World::stabilityReport() const {
     cache.inputs = inputs;
     cache.report =
         analyseStability(generators_, particles_, config_.integrator, config_.dt, config_.substeps);
+    cache.drag = analyseDragStability(generators_, particles_, config_.integrator, config_.dt,
+                                      config_.substeps);
     const auto own_acceleration = particles_.accelerations();
     const auto inverse_mass = particles_.inverseMasses();
     cache.movable_mass = 0.0;
@@ -190,11 +192,17 @@ const StabilityReport& World::stabilityReport() const {
     cache.valid = true;
   }
   StabilityReport* binding = &cache.report;
-  if (!body_generators_.empty()) {
-    const int body_substeps = std::max(config_.substeps, body_settings_.substeps);
-    cache.with_bodies = bindingReport(
-        cache.report, analysePointSpringStability(body_generators_, bodies_, particles_,
-                                                  config_.integrator, config_.dt, body_substeps));
+  if (!body_generators_.empty() || cache.drag.generator != 0) {
+    cache.with_bodies = bindingReport(cache.report, cache.drag);
+    if (!body_generators_.empty()) {
+      const int body_substeps = std::max(config_.substeps, body_settings_.substeps);
+      cache.with_bodies = bindingReport(
+          bindingReport(cache.with_bodies,
+                        analysePointSpringStability(body_generators_, bodies_, particles_,
+                                                    config_.integrator, config_.dt, body_substeps)),
+          analyseBodyDragStability(body_generators_, bodies_, particles_, config_.dt,
+                                   body_substeps));
+    }
     binding = &cache.with_bodies;
   }
   // `stable` stays about config().substeps (the warning); substeps_used is what step() takes.

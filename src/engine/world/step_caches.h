@@ -43,8 +43,10 @@ struct StabilityCache {
   bool valid = false;
   Inputs inputs;
   StabilityReport report;  // the particles' springs (what the energy guard allows for)
-  // With springs on bodies: the binding one of report and theirs (World::stabilityReport()),
-  // taken again every time (it depends on the bodies, whose masses it reads).
+  StabilityReport drag;    // the particles' drags
+  // With drags or springs on bodies: the binding one of report, drag and the bodies'
+  // (World::stabilityReport()), taken again every time (it depends on the bodies, whose masses
+  // it reads).
   StabilityReport with_bodies;
   // Per-particle accelerations or a generator's uncounted work add work the energy omits.
   bool uncounted_work = false;

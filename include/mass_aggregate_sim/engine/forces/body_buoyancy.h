@@ -46,6 +46,8 @@ struct BodyForceKind<BodyBuoyancy> {
                          BodyForceSums& sums);
   static void stiffness(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene,
                         std::vector<BodyStiffnessTerm>& terms) {}
+  static void decay(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene,
+                    std::vector<DecayTerm>& terms) {}
   static Real energy(const std::vector<BodyBuoyancy>& buoyancies, const BodyForceScene& scene) {
     return 0.0;
   }

@@ -29,6 +29,8 @@ struct BodyForceKind<BodyDrag> {
                          BodyForceSums& sums);
   static void stiffness(const std::vector<BodyDrag>& drags, const BodyForceScene& scene,
                         std::vector<BodyStiffnessTerm>& terms) {}
+  static void decay(const std::vector<BodyDrag>& drags, const BodyForceScene& scene,
+                    std::vector<DecayTerm>& terms);
   static Real energy(const std::vector<BodyDrag>& drags, const BodyForceScene& scene) {
     return 0.0;
   }

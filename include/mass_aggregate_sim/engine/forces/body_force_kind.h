@@ -31,6 +31,7 @@ class BodyForceSums;
 //   energy(ks, scene)            their elastic energy at the state of the scene
 //   stiffness(ks, scene, terms)  a BodyStiffnessTerm per spring, for the stability analysis
 //                                (stability.h); nothing for a kind without stiffness
+//   decay(ks, scene, terms)      a DecayTerm per drag (linear and angular), likewise
 // They act as the particle kinds do, with the law written once (force_laws.h); they are evaluated
 // once per substep at its start (bodies are integrated by semi-implicit Euler, which reads the
 // forces there), and a particle at one end feels that force, constant over the substep, as an

@@ -35,6 +35,8 @@ struct ForceKind<Buoyancy> {
   static void linearise(const std::vector<Buoyancy>& buoyancies, ImplicitSystem& system);
   static void stiffness(const std::vector<Buoyancy>& buoyancies, const ParticleStore& particles,
                         std::vector<StiffnessTerm>& terms) {}
+  static void decay(const std::vector<Buoyancy>& buoyancies, const ParticleStore& particles,
+                    std::vector<DecayTerm>& terms) {}
 };
 
 }  // namespace engine

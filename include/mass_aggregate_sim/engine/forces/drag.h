@@ -26,6 +26,8 @@ struct ForceKind<Drag> {
   static void linearise(const std::vector<Drag>& drags, ImplicitSystem& system);
   static void stiffness(const std::vector<Drag>& drags, const ParticleStore& particles,
                         std::vector<StiffnessTerm>& terms) {}
+  static void decay(const std::vector<Drag>& drags, const ParticleStore& particles,
+                    std::vector<DecayTerm>& terms);
 };
 
 }  // namespace engine

@@ -33,6 +33,8 @@ struct StiffnessTerm;
 //   linearise(ks, system)     their K = df/dx and D = df/dv for implicit Euler
 //   stiffness(ks, particles, terms)
 //                             their springs for the stability analysis
+//   decay(ks, particles, terms)
+//                             their drags for the stability analysis (DecayTerm)
 //   kUncountedWork            does work the energy guard cannot count (its energy is not a
 //                             potential): a world with one is not guarded
 //   kDrawn                    whether the kind acts between two points (a spring) and is drawn
@@ -40,6 +42,15 @@ struct StiffnessTerm;
 //                             tension; one-particle kinds (drag, buoyancy) are not drawn
 template <typename Kind>
 struct ForceKind;
+
+// A drag for the stability analysis (stability.h): the rate of the first-order decay it puts on
+// a velocity, v' = -rate v (k1 / m; about a body's axes angular / I_min), which the integrators
+// take explicitly.
+struct DecayTerm {
+  GeneratorId id = 0;
+  Real rate = 0.0;  // 1/s
+  bool angular = false;
+};
 
 // A force generator as the node draws it: the line between its two ends and its tension (N, > 0
 // pulling the ends together, 0 for a slack bungee).

@@ -60,6 +60,8 @@ struct BodyForceKind<PointSpring> {
   static Real energy(const std::vector<PointSpring>& springs, const BodyForceScene& scene);
   static void stiffness(const std::vector<PointSpring>& springs, const BodyForceScene& scene,
                         std::vector<BodyStiffnessTerm>& terms);
+  static void decay(const std::vector<PointSpring>& springs, const BodyForceScene& scene,
+                    std::vector<DecayTerm>& terms) {}
   // The line between its ends as stored and its tension k (l - L) (0 for a slack bungee).
   static DrawnSegment drawn(const PointSpring& spring, const BodyStore& bodies,
                             const ParticleStore& particles);

@@ -66,6 +66,8 @@ struct ForceKind<Spring> {
   static void linearise(const std::vector<Spring>& springs, ImplicitSystem& system);
   static void stiffness(const std::vector<Spring>& springs, const ParticleStore& particles,
                         std::vector<StiffnessTerm>& terms);
+  static void decay(const std::vector<Spring>& springs, const ParticleStore& particles,
+                    std::vector<DecayTerm>& terms) {}
 };
 
 }  // namespace engine

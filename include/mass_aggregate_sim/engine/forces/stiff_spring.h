@@ -36,6 +36,8 @@ struct ForceKind<StiffSpring> {
   // Never limits the step.
   static void stiffness(const std::vector<StiffSpring>& springs, const ParticleStore& particles,
                         std::vector<StiffnessTerm>& terms) {}
+  static void decay(const std::vector<StiffSpring>& springs, const ParticleStore& particles,
+                    std::vector<DecayTerm>& terms) {}
 };
 
 }  // namespace engine

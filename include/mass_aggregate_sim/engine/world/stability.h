@@ -105,6 +105,26 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
                                             const BodyStore& bodies, const ParticleStore& particles,
                                             Integrator particle_integrator, Real dt, int substeps);
 
+// Largest rate*h at which an integrator keeps a drag's decay v' = -rate v bounded (the drag is
+// taken explicitly, at the velocity it knows): explicit and semi-implicit Euler 2
+// (v' = (1 - rate h) v); position and velocity Verlet 1 (their drag reads the velocity of the
+// step before, v'' = v' - rate h v, whose roots have modulus sqrt(rate h)); RK4 2.7853, the real
+// root of z^3 - 4 z^2 + 12 z - 24 (where its factor 1 - z + z^2/2 - z^3/6 + z^4/24 returns to 1);
+// implicit Euler infinity (its solve takes the drag's df/dv). Each found to 1e-4 by running a
+// dragged particle (DragStability.* in the engine tests).
+Real decayLimit(Integrator integrator);
+
+// The strongest drag of the particles (ForceKind<K>::decay: k1 / m; the k2 |v| v part's rate
+// grows with the speed and is not bounded here) against the integrator's decay limit, with the
+// report's omega its rate, named "drag"; and of the bodies (BodyForceKind<K>::decay: k1 / m and
+// angular / I_min, "angular drag"), which semi-implicit Euler moves, at the bodies' substeps.
+StabilityReport analyseDragStability(const ForceGenerators& generators,
+                                     const ParticleStore& particles, Integrator integrator, Real dt,
+                                     int substeps);
+StabilityReport analyseBodyDragStability(const BodyForceGenerators& generators,
+                                         const BodyStore& bodies, const ParticleStore& particles,
+                                         Real dt, int substeps);
+
 // The binding one of two reports on the same dt: the smaller stable dt (its spring, omega and
 // message), unstable if either is, and the most substeps either needs (0, none up to 1000, wins).
 StabilityReport bindingReport(const StabilityReport& a, const StabilityReport& b);
