@@ -148,11 +148,13 @@ void runs(benchmark::internal::Benchmark* b) {
   b->Iterations(kFrames)->Unit(benchmark::kMillisecond);
 }
 
-// The same and 12 substeps of 1 iteration.
+// The same and 8 and 12 substeps of 1 iteration.
 template <int kSize, int kFrames>
 void pileRuns(benchmark::internal::Benchmark* b) {
   runs<kSize, kFrames>(b);
-  for (const int sleeping : {0, 1}) b->Args({kSize, 12, sleeping, 1});
+  for (const int substeps : {8, 12}) {
+    for (const int sleeping : {0, 1}) b->Args({kSize, substeps, sleeping, 1});
+  }
 }
 
 void BM_RigidPyramid(benchmark::State& state) {
