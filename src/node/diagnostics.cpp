@@ -124,9 +124,9 @@ void stabilityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
   const engine::StabilityReport& s = in.stability;
   out.add("divergence events", in.divergence_events);
   out.add("last divergence", in.last_divergence);
-  out.add("stiffest spring", s.generator);
-  out.add("omega*h", s.omega_h);
-  out.add("integrator limit on omega*h", s.limit);
+  out.add("binding spring or drag", s.generator);
+  out.add("omega*h (a drag: rate*h)", s.omega_h);
+  out.add("integrator limit on it", s.limit);
   out.add("largest stable dt (s)", s.stable_dt);
   out.add("substeps used", s.substeps_used);
   out.add("substeps needed", s.substeps_needed);
@@ -136,7 +136,7 @@ void stabilityStatus(const DiagnosticInputs& in, DiagnosticStatusWrapper& out) {
   } else if (!s.stable) {
     out.summary(DiagnosticStatus::WARN, s.message);
   } else {
-    out.summary(DiagnosticStatus::OK, "no divergence; every spring within its limit");
+    out.summary(DiagnosticStatus::OK, "no divergence; every spring and drag within its limit");
   }
 }
 
