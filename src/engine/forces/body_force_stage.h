@@ -31,6 +31,7 @@ struct ForceEnd {
 struct BodyStiffnessTerm {
   GeneratorId id = 0;
   Real stiffness = 0.0;
+  Real damping = 0.0;  // c along the spring, N s/m
   Real mobility[2] = {0.0, 0.0};
   std::int64_t particle[2] = {-1, -1};  // the dense index of a particle end
 };

@@ -25,14 +25,15 @@ struct ForceEvaluation {
   const DenseSprings& springs;
 };
 
-// One spring for the stability analysis: its ends (dense; b = kAnchorEnd for an anchor) and
-// stiffness.
+// One spring for the stability analysis: its ends (dense; b = kAnchorEnd for an anchor),
+// stiffness and damping.
 struct StiffnessTerm {
   static constexpr std::size_t kAnchorEnd = static_cast<std::size_t>(-1);
   GeneratorId id = 0;
   std::size_t a = 0;
   std::size_t b = kAnchorEnd;
   Real stiffness = 0.0;
+  Real damping = 0.0;  // c along the spring, N s/m
 };
 
 // Adds the force of every generator at (e.x, e.v) to `force`, kind by kind; with `elastic`,

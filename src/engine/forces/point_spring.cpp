@@ -103,6 +103,7 @@ void BodyForceKind<PointSpring>::stiffness(const std::vector<PointSpring>& sprin
     BodyStiffnessTerm term;
     term.id = spring.id;
     term.stiffness = spring.stiffness;
+    term.damping = spring.damping;
     const JointEnd* ends[2] = {&spring.a, &spring.b};
     for (int e = 0; e < 2; ++e) {
       term.mobility[e] = scene.mobility(*ends[e]);

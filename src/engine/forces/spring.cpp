@@ -98,6 +98,7 @@ void ForceKind<Spring>::stiffness(const std::vector<Spring>& springs,
     term.a = particles.denseIndexUnchecked(spring.a);
     if (!spring.anchored()) term.b = particles.denseIndexUnchecked(spring.b);
     term.stiffness = spring.stiffness;
+    term.damping = spring.damping;
     terms.push_back(term);
   }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <vector>
 
@@ -48,16 +49,21 @@ void finishReport(StabilityReport& report, const char* what, const char* integra
   report.stable_dt = stable_substep * static_cast<Real>(substeps);
   report.substeps_needed = fewestSubsteps(dt, stable_substep);
   if (report.stable) return;
-  char measure[160];
+  char measure[224];
   if (decay) {
     std::snprintf(measure, sizeof(measure), "rate*h = %.4g (rate = %.4g 1/s, h = %.4g s)",
                   report.omega_h, report.omega, h);
   } else {
+    char with_damping[64] = "";
+    if (report.damping_rate > 0.0) {
+      std::snprintf(with_damping, sizeof(with_damping), ", damping c/mu %.4g 1/s",
+                    report.damping_rate);
+    }
     std::snprintf(measure, sizeof(measure),
-                  "omega*h = %.4g (omega = %.4g rad/s, coupled %.4g rad/s, h = %.4g s)",
-                  report.omega_h, report.omega, report.coupled_omega, h);
+                  "omega*h = %.4g (omega = %.4g rad/s, coupled %.4g rad/s%s, h = %.4g s)",
+                  report.omega_h, report.omega, report.coupled_omega, with_damping, h);
   }
-  char text[400];
+  char text[480];
   std::snprintf(text, sizeof(text),
                 "%s %u is unstable with %s: %s exceeds the limit %.4g; stable for dt < %.4g s "
                 "with %d substeps%s",
@@ -166,6 +172,56 @@ Real largestStableSubstep(const Integrator integrator, const Real omega, const R
   return low;
 }
 
+Real largestStableDampedSubstep(const Integrator integrator, const Real omega, const Real gamma,
+                                const Real damping, const Real fraction) {
+  if (gamma <= 0.0 || integrator == Integrator::kExplicitEuler) {
+    return largestStableSubstep(integrator, omega, damping, fraction);
+  }
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+      // (omega h)^2 + 2 gamma h = 4; omega = 0: gamma h = 2
+      return fraction * (omega > 0.0 ? (std::sqrt(gamma * gamma + 4.0 * omega * omega) - gamma) /
+                                           (omega * omega)
+                                     : 2.0 / gamma);
+    case Integrator::kPositionVerlet:
+    case Integrator::kVelocityVerlet:
+      // (omega h)^2 + 4 gamma h = 4; omega = 0: gamma h = 1
+      return fraction * (omega > 0.0 ? 2.0 * (std::sqrt(gamma * gamma + omega * omega) - gamma) /
+                                           (omega * omega)
+                                     : 1.0 / gamma);
+    case Integrator::kRk4: {
+      // The roots of lambda^2 + gamma lambda + omega^2 = 0, each inside RK4's region
+      // |1 + z + z^2/2 + z^3/6 + z^4/24| <= 1 at z = h lambda: the largest h, by bisection.
+      const std::complex<Real> root =
+          std::sqrt(std::complex<Real>(0.25 * gamma * gamma - omega * omega, 0.0));
+      const std::complex<Real> roots[2] = {-0.5 * gamma + root, -0.5 * gamma - root};
+      const auto stable = [&](const Real h) {
+        for (const std::complex<Real>& lambda : roots) {
+          const std::complex<Real> z = h * lambda;
+          const std::complex<Real> r = 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0)));
+          if (std::abs(r) > 1.0) return false;
+        }
+        return true;
+      };
+      Real low = 0.0;
+      Real high = 4.0 / std::max(std::abs(roots[0]), std::abs(roots[1]));
+      while (stable(high)) {
+        low = high;
+        high *= 2.0;
+      }
+      for (int i = 0; i < 100; ++i) {
+        const Real mid = 0.5 * (low + high);
+        (stable(mid) ? low : high) = mid;
+      }
+      return fraction * low;
+    }
+    case Integrator::kExplicitEuler:
+    case Integrator::kImplicitEuler:
+      break;
+  }
+  return kInfinity;
+}
+
 Real energySwing(const Integrator integrator, const Real omega_h) {
   // Explicit Euler has no bounded undamped orbit: every rise of its energy is growth.
   if (integrator == Integrator::kExplicitEuler) return 1.0;
@@ -204,18 +260,25 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
 
   const std::vector<StiffnessTerm> terms = stiffnessTerms(generators, particles);
 
-  // s_i = sum of sqrt(k) over the springs at particle i
+  // s_i = sum of sqrt(k) over the springs at particle i; d_i the same of sqrt(c)
   std::vector<Real> root_stiffness_sum(n, 0.0);
+  std::vector<Real> root_damping_sum(n, 0.0);
   for (const StiffnessTerm& t : terms) {
     const Real root = std::sqrt(t.stiffness);
+    const Real root_c = std::sqrt(t.damping);
     root_stiffness_sum[t.a] += root;
-    if (t.b != kAnchor) root_stiffness_sum[t.b] += root;
+    root_damping_sum[t.a] += root_c;
+    if (t.b != kAnchor) {
+      root_stiffness_sum[t.b] += root;
+      root_damping_sum[t.b] += root_c;
+    }
   }
 
   const Real h = dt / static_cast<Real>(substeps);
   Real worst_ratio = -1.0;  // omega h relative to the limit, or h over the stable substep
   Real worst_stable_substep = kInfinity;
   Real worst_omega = 0.0;
+  Real worst_gamma = 0.0;
   Real worst_damping = 1.0;
   for (const StiffnessTerm& t : terms) {
     if (t.stiffness <= 0.0) continue;
@@ -228,24 +291,35 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
     Real coupled_square = root_stiffness_sum[t.a] * inverse_a;
     if (t.b != kAnchor) coupled_square += root_stiffness_sum[t.b] * inverse_b;
     const Real coupled_omega = std::sqrt(std::sqrt(t.stiffness) * coupled_square);
+    // The spring's damping on the same line, bounded alike: gamma_e <= sqrt(c_e) (d_a / m_a +
+    // d_b / m_b), c / mu for an isolated spring.
+    Real coupled_damping = root_damping_sum[t.a] * inverse_a;
+    if (t.b != kAnchor) coupled_damping += root_damping_sum[t.b] * inverse_b;
+    const Real gamma = std::sqrt(t.damping) * coupled_damping;
     // The weaker particle damping of the two movable ends governs explicit Euler.
     Real weakest_damping = inverse_a > 0.0 ? damping[t.a] : 0.0;
     if (t.b != kAnchor && inverse_b > 0.0)
       weakest_damping = std::max(weakest_damping, damping[t.b]);
-    const Real stable_substep = largestStableSubstep(integrator, coupled_omega, weakest_damping);
+    const Real stable_substep =
+        largestStableDampedSubstep(integrator, coupled_omega, gamma, weakest_damping);
     const Real ratio = stable_substep > 0.0 ? h / stable_substep : kInfinity;
     if (ratio > worst_ratio) {
       worst_ratio = ratio;
       worst_stable_substep = stable_substep;
-      nameSpring(report, t.id, omega, coupled_omega, h,
-                 stabilityLimit(integrator, weakest_damping, h));
+      const Real limit = gamma > 0.0 && integrator != Integrator::kExplicitEuler
+                             ? coupled_omega * stable_substep
+                             : stabilityLimit(integrator, weakest_damping, h);
+      nameSpring(report, t.id, omega, coupled_omega, h, limit);
+      report.damping_rate = gamma;
       worst_omega = coupled_omega;
+      worst_gamma = gamma;
       worst_damping = weakest_damping;
     }
   }
   if (report.generator == 0) return report;
   finishReport(report, "spring", integratorName(integrator), dt, substeps, worst_stable_substep,
-               largestStableSubstep(integrator, worst_omega, worst_damping, kAutoSubstepMargin));
+               largestStableDampedSubstep(integrator, worst_omega, worst_gamma, worst_damping,
+                                          kAutoSubstepMargin));
   return report;
 }
 
@@ -270,6 +344,7 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
     const Real mobility = t.mobility[0] + t.mobility[1];
     if (t.stiffness <= 0.0 || mobility <= 0.0) continue;  // no spring, or neither end moves
     const Real omega = std::sqrt(t.stiffness * mobility);
+    const Real gamma = t.damping * mobility;
     Real stable_substep = kInfinity;
     Real margin_substep = kInfinity;
     Integrator binding = Integrator::kSemiImplicitEuler;
@@ -280,20 +355,24 @@ StabilityReport analysePointSpringStability(const BodyForceGenerators& generator
       const bool particle = t.particle[e] >= 0;
       const Integrator integrator = particle ? particle_integrator : Integrator::kSemiImplicitEuler;
       const Real d = particle ? damping[static_cast<Eigen::Index>(t.particle[e])] : 1.0;
-      const Real substep = largestStableSubstep(integrator, omega, d);
+      const Real substep = largestStableDampedSubstep(integrator, omega, gamma, d);
       if (substep <= stable_substep) {
         stable_substep = substep;
         binding = integrator;
         binding_damping = d;
         binding_particle = particle;
       }
-      margin_substep =
-          std::min(margin_substep, largestStableSubstep(integrator, omega, d, kAutoSubstepMargin));
+      margin_substep = std::min(margin_substep, largestStableDampedSubstep(integrator, omega, gamma,
+                                                                           d, kAutoSubstepMargin));
     }
     if (report.generator != 0 && !(stable_substep < worst_stable_substep)) continue;
     worst_stable_substep = stable_substep;
     worst_margin_substep = margin_substep;
-    nameSpring(report, t.id, omega, omega, h, stabilityLimit(binding, binding_damping, h));
+    const Real limit = gamma > 0.0 && binding != Integrator::kExplicitEuler
+                           ? omega * stable_substep
+                           : stabilityLimit(binding, binding_damping, h);
+    nameSpring(report, t.id, omega, omega, h, limit);
+    report.damping_rate = gamma;
     worst_at_particle = binding_particle;
   }
   if (report.generator == 0) return report;

@@ -40,6 +40,21 @@ Real stabilityLimit(Integrator integrator, Real damping, Real h);
 // the limit (1: stable; infinity when any h does, 0 when none does).
 Real largestStableSubstep(Integrator integrator, Real omega, Real damping, Real fraction = 1.0);
 
+// The same for a damped mode x'' = -omega^2 x - gamma x' (a spring with damping c on its line:
+// gamma = c / mu), which the integrators take explicitly: each step's map of (x, v) is linear,
+// and it stays bounded while (Jury's conditions on its trace and determinant)
+//   semi-implicit Euler      (omega h)^2 + 2 gamma h <= 4
+//   position, velocity Verlet (omega h)^2 + 4 gamma h <= 4 (their damping reads the velocity of
+//                            the step before)
+//   RK4                      |R(h lambda)| <= 1 at both roots of lambda^2 + gamma lambda + omega^2,
+//                            R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 (found by bisection)
+//   implicit Euler           any h (it solves with the damping's df/dv)
+//   explicit Euler           as without gamma (damping can only widen its range; not credited).
+// A critically damped spring (gamma = 2 omega) is stable under semi-implicit Euler only while
+// omega h <= 2 sqrt(2) - 2 = 0.83, not 2. gamma = 0 gives largestStableSubstep exactly.
+Real largestStableDampedSubstep(Integrator integrator, Real omega, Real gamma, Real damping,
+                                Real fraction = 1.0);
+
 // auto_substep keeps omega*h at or below this fraction of the integrator's limit: at the limit
 // itself an orbit is barely bounded and its energy swings without bound (energySwing).
 constexpr Real kAutoSubstepMargin = 0.9;
@@ -77,7 +92,10 @@ struct StabilityReport {
   Real omega = 0.0;           // that spring's sqrt(k/mu), rad/s
   Real coupled_omega = 0.0;   // the bound on the fastest mode it takes part in, rad/s
   Real omega_h = 0.0;         // coupled_omega * substep length
-  Real limit = std::numeric_limits<Real>::infinity();  // the integrator's limit on omega*h
+  // The integrator's limit on omega*h; for a damped spring, omega times the largest stable
+  // substep (largestStableDampedSubstep).
+  Real limit = std::numeric_limits<Real>::infinity();
+  Real damping_rate = 0.0;  // that spring's damping c / mu (the coupled bound), 1/s
   // The largest step dt that is stable with substeps_used substeps (a strict bound: any dt
   // below it is stable); infinity when every dt is, 0 when none is.
   Real stable_dt = std::numeric_limits<Real>::infinity();
