@@ -250,7 +250,8 @@ Real guardSwing(const Integrator integrator, const Real omega_h) {
 }
 
 StabilityReport analyseStability(const ForceGenerators& generators, const ParticleStore& particles,
-                                 const Integrator integrator, const Real dt, const int substeps) {
+                                 const Integrator integrator, const Real dt, const int substeps,
+                                 const bool with_damping) {
   StabilityReport report;
   report.substeps_used = substeps;
   report.limit = stabilityLimit(integrator);
@@ -295,7 +296,7 @@ StabilityReport analyseStability(const ForceGenerators& generators, const Partic
     // d_b / m_b), c / mu for an isolated spring.
     Real coupled_damping = root_damping_sum[t.a] * inverse_a;
     if (t.b != kAnchor) coupled_damping += root_damping_sum[t.b] * inverse_b;
-    const Real gamma = std::sqrt(t.damping) * coupled_damping;
+    const Real gamma = with_damping ? std::sqrt(t.damping) * coupled_damping : 0.0;
     // The weaker particle damping of the two movable ends governs explicit Euler.
     Real weakest_damping = inverse_a > 0.0 ? damping[t.a] : 0.0;
     if (t.b != kAnchor && inverse_b > 0.0)

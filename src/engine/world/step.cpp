@@ -173,7 +173,9 @@ const StabilityReport& World::stabilityReport() const {
       config_.dt,        config_.substeps,   config_.integrator};
   if (!cache.valid || !(inputs == cache.inputs)) {
     cache.inputs = inputs;
-    cache.report =
+    cache.report = analyseStability(generators_, particles_, config_.integrator, config_.dt,
+                                    config_.substeps, false);
+    cache.damped =
         analyseStability(generators_, particles_, config_.integrator, config_.dt, config_.substeps);
     cache.drag = analyseDragStability(generators_, particles_, config_.integrator, config_.dt,
                                       config_.substeps);
@@ -192,8 +194,9 @@ const StabilityReport& World::stabilityReport() const {
     cache.valid = true;
   }
   StabilityReport* binding = &cache.report;
-  if (!body_generators_.empty() || cache.drag.generator != 0) {
-    cache.with_bodies = bindingReport(cache.report, cache.drag);
+  if (!body_generators_.empty() || cache.drag.generator != 0 ||
+      cache.damped.stable_dt != cache.report.stable_dt) {
+    cache.with_bodies = bindingReport(bindingReport(cache.report, cache.damped), cache.drag);
     if (!body_generators_.empty()) {
       const int body_substeps = std::max(config_.substeps, body_settings_.substeps);
       cache.with_bodies = bindingReport(

@@ -42,9 +42,11 @@ struct StabilityCache {
   };
   bool valid = false;
   Inputs inputs;
-  StabilityReport report;  // the particles' springs (what the energy guard allows for)
+  StabilityReport report;  // the particles' springs, undamped (what the energy guard allows for)
+  StabilityReport damped;  // the same with the springs' damping
   StabilityReport drag;    // the particles' drags
-  // With drags or springs on bodies: the binding one of report, drag and the bodies'
+  // With damped springs, drags or springs on bodies: the binding one of report, damped, drag and
+  // the bodies'
   // (World::stabilityReport()), taken again every time (it depends on the bodies, whose masses
   // it reads).
   StabilityReport with_bodies;

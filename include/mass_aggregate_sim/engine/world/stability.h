@@ -110,9 +110,12 @@ struct StabilityReport {
   std::string message;  // empty when stable
 };
 
-// Analyses the scene for a step dt split into substeps.
+// Analyses the scene for a step dt split into substeps; with_damping takes each spring's damping
+// into its limit (largestStableDampedSubstep), else every spring counts as undamped (the ranking
+// the energy guard reads: its swing is the stiffest undamped mode's).
 StabilityReport analyseStability(const ForceGenerators& generators, const ParticleStore& particles,
-                                 Integrator integrator, Real dt, int substeps);
+                                 Integrator integrator, Real dt, int substeps,
+                                 bool with_damping = true);
 
 // The same for the springs on bodies (PointSpring), each alone (no coupled bound), with
 // omega = sqrt(k (g_a + g_b)) and g an end's largest 1/m_eff along any line (1/m + |r|^2 / I_min
