@@ -570,6 +570,7 @@ class BodyServicesTest(unittest.TestCase):
             ('depth for the shapes model', field(max_depth=0.2)),
             ('unknown model', field(model='center')),
             ('NaN density', field(liquid_density=NAN)),
+            ('NaN depth', field(max_depth=NAN)),
             ('Inf surface', field(surface_height=INF)),
             ('NaN up', field(up=vec(NAN, 0.0, 1.0))),
             ('negative drag', field(type='drag', k1=-1.0)),

@@ -54,7 +54,8 @@ std::variant<engine::BodyDrag, engine::BodyBuoyancy> onBody(const ForceFieldRequ
   engine::BodyBuoyancy buoyancy;
   buoyancy.body = id;
   buoyancy.model = r.model;
-  buoyancy.max_depth = r.max_depth > 0.0 ? r.max_depth : -1.0;
+  // 0 or less asks for the default; NaN goes on to be refused.
+  buoyancy.max_depth = r.max_depth <= 0.0 ? -1.0 : r.max_depth;
   buoyancy.volume = r.volume;
   buoyancy.liquid_density = r.liquid_density;
   buoyancy.surface_height = r.surface_height;

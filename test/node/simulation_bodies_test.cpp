@@ -602,6 +602,7 @@ TEST(SimulationBodiesTest, ForceFieldsAreAddedAllOrNothingCountedAndRemoved) {
       {"a depth for the shapes' model", with([](ForceFieldRequest& r) { r.max_depth = 0.2; })},
       {"negative density", with([](ForceFieldRequest& r) { r.liquid_density = -1.0; })},
       {"NaN surface", with([](ForceFieldRequest& r) { r.surface_height = kNaN; })},
+      {"NaN depth", with([](ForceFieldRequest& r) { r.max_depth = kNaN; })},
       {"infinite up", with([](ForceFieldRequest& r) { r.up.x() = kInf; })},
       {"negative drag", with([](ForceFieldRequest& r) {
          r.type = ForceFieldType::kDrag;
@@ -621,9 +622,9 @@ TEST(SimulationBodiesTest, ForceFieldsAreAddedAllOrNothingCountedAndRemoved) {
   }
   EXPECT_NE(sim.addForceFields(hostile[1].second).message().find("bodies[1]: no body named"),
             std::string::npos);
-  EXPECT_NE(sim.addForceFields(hostile[9].second).message().find("5 more exceed ~max_links (4)"),
+  EXPECT_NE(sim.addForceFields(hostile[10].second).message().find("5 more exceed ~max_links (4)"),
             std::string::npos)
-      << sim.addForceFields(hostile[9].second).message();
+      << sim.addForceFields(hostile[10].second).message();
   EXPECT_FALSE(parseForceFieldType("wind"));
   EXPECT_NE(parseForceFieldType("wind").message().find("drag, buoyancy"), std::string::npos);
   EXPECT_FALSE(parseBuoyancyModel("center"));
