@@ -18,7 +18,8 @@ from geometry_msgs.msg import Point, TransformStamped, Vector3
 from sensor_msgs.msg import JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
-from mass_aggregate_sim.msg import BodyContact, BodyContactArray, BodySpec, JointEndSpec
+from mass_aggregate_sim.msg import (BodyContact, BodyContactArray, BodySpec, Command,
+                                    JointEndSpec)
 from mass_aggregate_sim.srv import (AddBodySpringRequest, AddForceFieldRequest, AddJointRequest,
                                     ApplyBodyImpulseRequest, ApplyBodyWrenchRequest,
                                     GetBodyStateRequest, OverlapRequest, RaycastRequest,
@@ -100,6 +101,9 @@ class BodyServicesTest(unittest.TestCase):
         cls.buffer = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.buffer)
         cls.buffer.lookup_transform('world', 'tilted', rospy.Time(0), rospy.Duration(10.0))
+        cls.commands = []
+        cls.command_sub = rospy.Subscriber('/mass_aggregate_sim/commands', Command,
+                                           cls.commands.append, queue_size=1000)
 
     def setUp(self):
         self.sim.restart()
@@ -266,8 +270,23 @@ class BodyServicesTest(unittest.TestCase):
         self.assertTrue(floats.success, floats.message)
         self.assertEqual(len(floats.force_ids), 1)
         drag = self.sim.add_force_field(AddForceFieldRequest(
-            type='drag', body_names=['plank'], k1=6000.0, angular=2000.0))
+            type='drag', body_names=['plank'], k1=6000.0, angular=2000.0, frame_id='tilted'))
         self.assertTrue(drag.success, drag.message)
+        # Both recorded in the world (a replay needs no tf): the water's surface moved, the
+        # drag's frame dropped too.
+        deadline = time.time() + 10.0
+        while len([c for c in self.commands if c.service == 'add_force_field']) < 2:
+            self.assertLess(time.time(), deadline, 'add_force_field not on ~commands')
+            time.sleep(0.05)
+        fields = []
+        for c in self.commands:
+            if c.service == 'add_force_field':
+                fields.append(AddForceFieldRequest())
+                fields[-1].deserialize(bytes(c.request))
+        self.assertEqual([(f.type, f.frame_id) for f in fields[-2:]],
+                         [('buoyancy', ''), ('drag', '')])
+        self.assertAlmostEqual(fields[-2].surface_height, 3.5, delta=1e-12)
+        self.assertVec(fields[-2].up, (0.0, 0.0, 1.0), tol=1e-12)
         self.assertTrue(self.sim.step(1000).success)
         settled = self.state('plank')
         q = settled.pose.orientation

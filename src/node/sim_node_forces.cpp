@@ -17,7 +17,7 @@ bool SimNode::onAddForceField(AddForceField::Request& req, AddForceField::Respon
       return;
     }
     AddForceField::Request resolved = req;
-    if (field.type == ForceFieldType::kBuoyancy) placeForceFieldRequest(*frame, field, resolved);
+    placeForceFieldRequest(*frame, field, resolved);  // recorded in the world, whatever the type
     const auto ids = sim_.addForceFields(field);
     if (!ids) {
       answer(res, false, ids.message());
