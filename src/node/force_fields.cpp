@@ -27,6 +27,15 @@ Result<engine::BuoyancyModel> parseBuoyancyModel(const std::string& model) {
 
 namespace {
 
+// The request's liquid on a particle's or a body's buoyancy.
+template <typename Buoyancy>
+void pourLiquid(const ForceFieldRequest& r, Buoyancy& buoyancy) {
+  buoyancy.volume = r.volume;
+  buoyancy.liquid_density = r.liquid_density;
+  buoyancy.surface_height = r.surface_height;
+  buoyancy.up = r.up;
+}
+
 // The generator of the request's type on one particle or one body.
 std::variant<engine::Drag, engine::Buoyancy> onParticle(const ForceFieldRequest& r,
                                                         const engine::ParticleId id) {
@@ -34,10 +43,7 @@ std::variant<engine::Drag, engine::Buoyancy> onParticle(const ForceFieldRequest&
   engine::Buoyancy buoyancy;
   buoyancy.particle = id;
   buoyancy.max_depth = r.max_depth;
-  buoyancy.volume = r.volume;
-  buoyancy.liquid_density = r.liquid_density;
-  buoyancy.surface_height = r.surface_height;
-  buoyancy.up = r.up;
+  pourLiquid(r, buoyancy);
   return buoyancy;
 }
 
@@ -56,10 +62,7 @@ std::variant<engine::BodyDrag, engine::BodyBuoyancy> onBody(const ForceFieldRequ
   buoyancy.model = r.model;
   // 0 or less asks for the default; NaN goes on to be refused.
   buoyancy.max_depth = r.max_depth <= 0.0 ? -1.0 : r.max_depth;
-  buoyancy.volume = r.volume;
-  buoyancy.liquid_density = r.liquid_density;
-  buoyancy.surface_height = r.surface_height;
-  buoyancy.up = r.up;
+  pourLiquid(r, buoyancy);
   return buoyancy;
 }
 

@@ -182,13 +182,13 @@ Real largestStableDampedSubstep(const Integrator integrator, const Real omega, c
       // (omega h)^2 + 2 gamma h = 4; omega = 0: gamma h = 2
       return fraction * (omega > 0.0 ? (std::sqrt(gamma * gamma + 4.0 * omega * omega) - gamma) /
                                            (omega * omega)
-                                     : 2.0 / gamma);
+                                     : decayLimit(integrator) / gamma);
     case Integrator::kPositionVerlet:
     case Integrator::kVelocityVerlet:
       // (omega h)^2 + 4 gamma h = 4; omega = 0: gamma h = 1
       return fraction * (omega > 0.0 ? 2.0 * (std::sqrt(gamma * gamma + omega * omega) - gamma) /
                                            (omega * omega)
-                                     : 1.0 / gamma);
+                                     : decayLimit(integrator) / gamma);
     case Integrator::kRk4: {
       // The roots of lambda^2 + gamma lambda + omega^2 = 0, each inside RK4's region
       // |1 + z + z^2/2 + z^3/6 + z^4/24| <= 1 at z = h lambda: the largest h, by bisection.

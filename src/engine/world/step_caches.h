@@ -43,10 +43,9 @@ struct StabilityCache {
   bool valid = false;
   Inputs inputs;
   StabilityReport report;  // the particles' springs, undamped (what the energy guard allows for)
-  StabilityReport damped;  // the same with the springs' damping
+  StabilityReport damped;  // the same with the springs' damping (World::stabilityReport())
   StabilityReport drag;    // the particles' drags
-  // With damped springs, drags or springs on bodies: the binding one of report, damped, drag and
-  // the bodies'
+  // With drags or generators on bodies: the binding one of damped, drag and the bodies' reports
   // (World::stabilityReport()), taken again every time (it depends on the bodies, whose masses
   // it reads).
   StabilityReport with_bodies;
