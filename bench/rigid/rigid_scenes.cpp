@@ -1,6 +1,7 @@
 #include "rigid_scenes.h"
 
 #include <cmath>
+#include <cstdlib>
 
 namespace mass_aggregate_sim {
 namespace bench {
@@ -80,6 +81,7 @@ RigidScene randomDrop(const int n, const std::uint64_t seed) {
   constexpr double kLowest = 1.0;
   RigidScene scene;
   scene.name = "random_drop/" + std::to_string(n);
+  if (seed != 1) scene.name += ", seed " + std::to_string(seed);
   addWalls(scene, 5.5, 0.25, 3.0);
   SplitMix64 rng(seed);
   const double first = -0.5 * kSpacing * (kPerSide - 1);
@@ -97,6 +99,11 @@ RigidScene randomDrop(const int n, const std::uint64_t seed) {
     scene.bodies.push_back(body);
   }
   return scene;
+}
+
+std::uint64_t randomDropSeed() {
+  const char* const text = std::getenv("MAS_RIGID_SEED");
+  return text != nullptr ? std::strtoull(text, nullptr, 10) : 1;
 }
 
 RigidScene particleRain(const int spheres, const std::uint64_t seed) {

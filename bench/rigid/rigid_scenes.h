@@ -78,6 +78,11 @@ RigidScene stack(int n);
 // tall whose inner faces are 5.5 m from the centre). The walls come first in `bodies`.
 RigidScene randomDrop(int n, std::uint64_t seed = 1);
 
+// The random drop's seed in the benchmarks: MAS_RIGID_SEED if set (a pile's at-rest overlap
+// depends on how its boxes happened to wedge, so its figures are compared over several seeds),
+// else 1.
+std::uint64_t randomDropSeed();
+
 // A stack of five unit cubes of 1 kg (as stack(5)) and `spheres` spheres of radius 3 cm and
 // 0.1 kg raining onto it: layers of 20 x 20 spheres 0.1 m apart (each moved at random by up to
 // 1.5 cm across) covering |x|, |y| < 1 m, layers 0.5 m apart from z = 6 m up. Friction 0.5,

@@ -6,6 +6,10 @@ and max (a ratio is taken within one round, where the runs were minutes apart). 
 are printed per binary, with a note when they differ between rounds.
 
     python3 docs/benchmarks/engine_bench_2026-11-26_ratios.py docs/benchmarks/engine_bench_2026-11-26_rounds.txt
+
+A second argument names the binaries, head first, when a sitting named them otherwise:
+
+    python3 docs/benchmarks/engine_bench_2026-11-26_ratios.py docs/benchmarks/engine_bench_2026-11-26_session5_rounds.txt head,5db
 """
 import re
 import statistics
@@ -14,7 +18,7 @@ from collections import defaultdict
 
 SI = {"a": 1e-18, "f": 1e-15, "p": 1e-12, "n": 1e-9, "u": 1e-6, "m": 1e-3, "": 1.0, "k": 1e3,
       "M": 1e6}
-BINARIES = ("head", "4992cc2", "5db094a")
+BINARIES = ["head", "4992cc2", "5db094a"]
 QUALITY = ("contacts", "kinetic_energy_per_particle", "kinetic_energy", "max_penetration",
            "velocity_passes", "position_passes", "outside", "divergences", "resets",
            "setup_seconds", "floor_ratio")
@@ -48,8 +52,14 @@ def parse(path):
         tokens = line.split()
         name, values = tokens[0], tokens[6:]
         row = {}
-        for key, text in zip(header, values):
-            row[key] = number(text)
+        if len(values) >= len(header):  # a label may follow the counters
+            for key, text in zip(header, values):
+                row[key] = number(text)
+        else:
+            # Google Benchmark does not print a new header for a row with fewer counters than the
+            # one above (the bandwidth floor under free fall): only its time per particle-step,
+            # the one counter with a time unit, is read.
+            row["particle_step_time"] = next(number(t) for t in values if t.endswith("s"))
         times[name][binary][rnd] = row["particle_step_time"]
         counters[name][binary][rnd] = row
     return times, counters
@@ -57,6 +67,8 @@ def parse(path):
 
 def main():
     times, counters = parse(sys.argv[1])
+    if len(sys.argv) > 2:
+        BINARIES[:] = sys.argv[2].split(",")
     print("particle_step_time, ns: per round (r1 r2 ...), median; ratios per round, median [min, max]")
     for name in times:
         print(f"\n{name}")
@@ -65,7 +77,7 @@ def main():
             series = " ".join(f"{rounds[r]:.4g}" for r in sorted(rounds))
             med = statistics.median(rounds.values()) if rounds else float("nan")
             print(f"  {b:8s} {series}   median {med:.4g}")
-        for other in ("4992cc2", "5db094a"):
+        for other in BINARIES[1:]:
             head, base = times[name].get("head", {}), times[name].get(other, {})
             ratios = [head[r] / base[r] for r in sorted(head) if r in base]
             if ratios:

@@ -1,14 +1,20 @@
 // The random drop's deepest overlaps, looked at one by one (docs/BENCHMARKS.md, 2026-11-26).
 // Build and run from the repository root after scripts/bench.sh has built the engine:
 //   g++ -std=c++17 -O2 -I include -I bench/rigid -I /usr/include/eigen3 \
-//     docs/benchmarks/random_drop_probe.cpp bench/rigid/rigid_scenes.cpp -o /tmp/random_drop_probe
-//     \
-//     -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
+//     docs/benchmarks/random_drop_probe.cpp bench/rigid/rigid_scenes.cpp \
+//     -o /tmp/random_drop_probe -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
-//   /tmp/random_drop_probe 4 600              # substeps, frames (ITER=n: iterations)
+//   /tmp/random_drop_probe 4 600              # substeps, frames
 //   NOGRAVITY=1 /tmp/random_drop_probe 4 600  # then the deepest pair with gravity off, at rest
+// Environment: SEED=n the scene's seed (1, the benchmark's, by default), ITER=n iterations,
+// RELAX=n relaxing passes. Besides the deepest overlap each second it prints, for the last 3 s
+// (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
+// energy at the end ("late"), and for the deepest pair at the end the least overlap over the
+// 15 axes of the separating axis test, computed here from the two boxes alone.
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -18,7 +24,8 @@ using engine::Vec3;
 int main(int argc, char** argv) {
   const int substeps = argc > 1 ? atoi(argv[1]) : 4;
   const int frames = argc > 2 ? atoi(argv[2]) : 600;
-  const auto scene = bench::rigid::randomDrop(1000);
+  const std::uint64_t seed = getenv("SEED") ? std::strtoull(getenv("SEED"), nullptr, 10) : 1;
+  const auto scene = bench::rigid::randomDrop(1000, seed);
   engine::WorldConfig config;
   config.dt = 1.0 / 60.0;
   config.gravity = scene.gravity;
@@ -27,6 +34,7 @@ int main(int argc, char** argv) {
   settings.substeps = substeps;
   settings.sleep = false;
   if (getenv("ITER")) settings.iterations = atoi(getenv("ITER"));
+  if (getenv("RELAX")) settings.relax_iterations = atoi(getenv("RELAX"));
   world.setBodySettings(settings);
   engine::PlaneCollider ground;
   ground.normal = Vec3::UnitZ();
@@ -48,8 +56,19 @@ int main(int argc, char** argv) {
     }
     ids.push_back(*world.addBody(body));
   }
+  constexpr int kLate = 180;
+  double late_worst = 0, late_sum = 0;
   for (int f = 0; f < frames; ++f) {
     world.step();
+    {
+      double deepest = 0;
+      for (const auto& c : world.bodyContacts())
+        for (const auto& p : c.points) deepest = std::max(deepest, -p.separation);
+      if (f >= frames - kLate) {
+        late_worst = std::max(late_worst, deepest);
+        late_sum += deepest;
+      }
+    }
     if (f % 60 == 59) {
       double worst = 0;
       int n = 0;
@@ -61,6 +80,15 @@ int main(int argc, char** argv) {
       std::printf("t %.0f s: deepest %.4f m, points deeper than 1 cm: %d\n", (f + 1) / 60.0, worst,
                   n);
     }
+  }
+  {
+    double linear = 0;
+    const auto& bs = world.bodies();
+    for (std::size_t i = 0; i < bs.size(); ++i)
+      if (bs.dynamic(i)) linear += 0.5 * bs.mass(i) * bs.linearVelocity(i).squaredNorm();
+    std::printf(
+        "late: worst %.4f m, mean of the frames' deepest %.4f m; linear KE at the end %.3g J\n",
+        late_worst, late_sum / std::min(kLate, frames), linear);
   }
   struct Deep {
     double depth;
@@ -117,6 +145,38 @@ int main(int argc, char** argv) {
       };
       std::printf("  independent: deepest vertex of a in b %.4f, of b in a %.4f\n", deepest(a, b),
                   deepest(b, a));
+      {  // the separating axis test's least overlap, from the boxes alone
+        const engine::Transform pa = bodies.pose(a), pb = bodies.pose(b);
+        const engine::Mat3 ra = pa.rotation.toRotationMatrix(), rb = pb.rotation.toRotationMatrix();
+        const Vec3 ha = box(a), hb = box(b);
+        const Vec3 dcen = pb.position - pa.position;
+        double best = 1e9;
+        Vec3 best_axis = Vec3::Zero();
+        int best_k = -1;
+        std::vector<Vec3> axes;
+        for (int i = 0; i < 3; ++i) axes.push_back(ra.col(i));
+        for (int i = 0; i < 3; ++i) axes.push_back(rb.col(i));
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) axes.push_back(ra.col(i).cross(rb.col(j)));
+        for (int k = 0; k < (int)axes.size(); ++k) {
+          Vec3 L = axes[k];
+          if (L.norm() < 1e-9) continue;
+          L.normalize();
+          double rA = 0, rB = 0;
+          for (int i = 0; i < 3; ++i) {
+            rA += ha[i] * std::abs(ra.col(i).dot(L));
+            rB += hb[i] * std::abs(rb.col(i).dot(L));
+          }
+          const double overlap = rA + rB - std::abs(dcen.dot(L));
+          if (overlap < best) {
+            best = overlap;
+            best_axis = L;
+            best_k = k;
+          }
+        }
+        std::printf("  SAT: least overlap %.4f on axis %d (%.2f %.2f %.2f)\n", best, best_k,
+                    best_axis.x(), best_axis.y(), best_axis.z());
+      }
       if (getenv("NOGRAVITY")) {
         engine::WorldConfig c = world.config();
         c.gravity.setZero();
