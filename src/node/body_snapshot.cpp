@@ -1,35 +1,12 @@
 #include "mass_aggregate_sim/node/body_snapshot.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace mass_aggregate_sim {
 namespace node {
 namespace {
 
 using engine::Vec3;
-
-class UnionFind {
- public:
-  explicit UnionFind(const std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
-  }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) {
-      parent_[i] = parent_[parent_[i]];
-      i = parent_[i];
-    }
-    return i;
-  }
-  void join(const std::size_t a, const std::size_t b) {
-    const std::size_t ra = find(a);
-    const std::size_t rb = find(b);
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 Vec3 endPoint(const engine::World& world, const engine::JointEnd& end) {
   if (end.isBody()) {
@@ -92,33 +69,6 @@ void takeJoints(const engine::World& world, const JointNames& names, BodySnapsho
 
 }  // namespace
 
-std::size_t countIslands(const engine::World& world,
-                         const std::vector<engine::BodyContactReport>& contacts) {
-  const engine::BodyStore& bodies = world.bodies();
-  const std::size_t n = bodies.size();
-  UnionFind islands(n);
-  const auto join = [&](const engine::BodyId a, const engine::BodyId b) {
-    const auto da = bodies.find(a);
-    const auto db = bodies.find(b);
-    if (da && db && bodies.dynamic(*da) && bodies.dynamic(*db)) islands.join(*da, *db);
-  };
-  for (const engine::BodyContactReport& c : contacts) {
-    if (c.other == engine::BodyContactReport::Other::kBody && !c.points.empty()) {
-      join(c.body, c.other_body);
-    }
-  }
-  world.joints().forEach([&](const auto& kind) {
-    for (const auto& joint : kind) {
-      if (joint.a.isBody() && joint.b.isBody()) join(joint.a.body, joint.b.body);
-    }
-  });
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (bodies.dynamic(i) && islands.find(i) == i) ++count;
-  }
-  return count;
-}
-
 void takeBodySnapshot(const engine::World& world, const JointNames& names, const bool contacts,
                       BodySnapshot& out) {
   const engine::BodyStore& bodies = world.bodies();
@@ -160,7 +110,7 @@ void takeBodySnapshot(const engine::World& world, const JointNames& names, const
     return;
   }
   std::vector<engine::BodyContactReport> reports = world.bodyContacts();
-  out.islands = countIslands(world, reports);
+  out.islands = world.bodyIslandCount();
   out.contact_count = reports.size();
   if (contacts) out.contacts = std::move(reports);
 }

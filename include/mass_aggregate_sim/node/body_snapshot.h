@@ -56,7 +56,7 @@ struct BodySnapshot {
   double substep = 0.0;  // s, the last step's substep: force = impulse / substep
   std::size_t named = 0;
   std::size_t joint_count = 0;
-  std::size_t islands = 0;
+  std::size_t islands = 0;  // World::bodyIslandCount()
   std::size_t sleeping_count = 0;
   std::size_t contact_count = 0;  // body contacts with a point in the last step
 };
@@ -64,12 +64,6 @@ struct BodySnapshot {
 // Fills `out` from the world (reusing its buffers); joints named by `names` (else joint_<id>).
 void takeBodySnapshot(const engine::World& world, const JointNames& names, bool contacts,
                       BodySnapshot& out);
-
-// The islands the engine sleeps: dynamic bodies joined by joints between two bodies or by body
-// contacts with a point, counted as the engine's union-find forms them (fixed and kinematic bodies
-// carry no island across them). `contacts`: World::bodyContacts().
-std::size_t countIslands(const engine::World& world,
-                         const std::vector<engine::BodyContactReport>& contacts);
 
 }  // namespace node
 }  // namespace mass_aggregate_sim

@@ -56,6 +56,18 @@ bool joins(const BodyStore& bodies, const std::size_t i) { return bodies.dynamic
 
 }  // namespace
 
+std::size_t countIslands(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints) {
+  UnionFind islands(bodies.size());
+  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+    if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
+  });
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies.dynamic(i) && islands.find(i) == i) ++count;
+  }
+  return count;
+}
+
 void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
                 const std::size_t body) {
   if (!bodies.dynamic(body) || bodies.awake(body)) {

@@ -15,6 +15,10 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
+// How many islands the dynamic bodies form as the sleep stage forms them (through the last
+// step's touching shape contacts and the joints between two bodies; fixed and kinematic bodies
+// join none), awake or asleep; a dynamic body touching nothing is an island.
+std::size_t countIslands(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints);
 // Wakes the island of dense body `body`: every body reached through contacts and joints.
 void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, std::size_t body);
 // Wakes the sleeping islands an awake body touches or is joined to; true when any woke.

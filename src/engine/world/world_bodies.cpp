@@ -172,6 +172,11 @@ Status World::setBodySettings(const BodySettings& settings) {
   return Status::ok();
 }
 
+std::size_t World::bodyIslandCount() const {
+  if (bodies_.empty()) return 0;
+  return countIslands(bodies_, *body_ws_, joints_);
+}
+
 std::vector<BodyContactReport> World::bodyContacts() const {
   std::vector<BodyContactReport> out;
   if (bodies_.empty()) return out;

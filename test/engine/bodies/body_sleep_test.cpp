@@ -187,6 +187,39 @@ SleepingScene sleepingScene() {
   return s;
 }
 
+TEST(BodySleep, TheIslandCountIsTheSleepStagesGrouping) {
+  // On the ground: a stack of two cubes (one island), a cube apart (one), two cubes on a fixed
+  // table 3 m apart (two: a fixed body joins none), and two cubes tied by a slack cable (one:
+  // a joint joins them though they never touch). Before the first step no contact exists yet,
+  // so the stack counts twice; once they rest, 5. All sleep, and the count stays.
+  World world(config());
+  EXPECT_EQ(world.bodyIslandCount(), 0u);
+  addGround(world);
+  const Vec3 half = Vec3::Constant(0.5);
+  ASSERT_TRUE(world.addBody(body(box(half), 1.0, Vec3(0.0, 0.0, 0.5))));
+  ASSERT_TRUE(world.addBody(body(box(half), 1.0, Vec3(0.0, 0.0, 1.5))));
+  ASSERT_TRUE(world.addBody(body(box(half), 1.0, Vec3(5.0, 0.0, 0.5))));
+  BodySpec table = body(box(Vec3(3.0, 1.0, 0.5)), 1.0, Vec3(0.0, 10.0, 0.5));
+  table.type = BodyType::kFixed;
+  ASSERT_TRUE(world.addBody(table));
+  ASSERT_TRUE(world.addBody(body(box(half), 1.0, Vec3(-1.5, 10.0, 1.5))));
+  ASSERT_TRUE(world.addBody(body(box(half), 1.0, Vec3(1.5, 10.0, 1.5))));
+  const BodyId left = *world.addBody(body(box(half), 1.0, Vec3(-1.5, -10.0, 0.5)));
+  const BodyId right = *world.addBody(body(box(half), 1.0, Vec3(1.5, -10.0, 0.5)));
+  ASSERT_TRUE(
+      world.addJoint(DistanceJoint::cable(JointEnd::onBody(left), JointEnd::onBody(right), 5.0)));
+  EXPECT_EQ(world.bodyIslandCount(), 6u);
+  world.step();
+  EXPECT_EQ(world.bodyIslandCount(), 5u);
+  for (int step = 0; step < 60; ++step) world.step();
+  std::size_t sleeping = 0;
+  for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+    if (world.bodies().dynamic(i) && !world.bodies().awake(i)) ++sleeping;
+  }
+  EXPECT_EQ(sleeping, 7u);
+  EXPECT_EQ(world.bodyIslandCount(), 5u);
+}
+
 TEST(BodySleep, AStackSleepsAndWakesAsOneIsland) {
   SleepingScene s = sleepingScene();
   std::printf("[ sleep ] stack asleep after steps %d (lower) and %d (upper), the box apart %d\n",

@@ -153,6 +153,10 @@ class World {
   const BodySettings& bodySettings() const { return body_settings_; }
   // Every body contact with at least one point, as of the last step, in the solver's order.
   std::vector<BodyContactReport> bodyContacts() const;
+  // The islands of dynamic bodies as sleeping forms them: joined by the last step's touching
+  // body contacts and by joints between two bodies (fixed and kinematic bodies join none), awake
+  // or asleep; a dynamic body touching nothing is one.
+  std::size_t bodyIslandCount() const;
   // Force generators on bodies (BodyForceKinds: BodyDrag, PointSpring, BodyBuoyancy), in the
   // generators' id space; validated by their kind (BodyForceKind<K>::validate). Removed with
   // their bodies and particles; they wake the bodies they act on.
