@@ -126,28 +126,30 @@ Result<std::uint64_t> Simulation::applyForce(const ForceRequest& request) {
   }
   const Status valid_force = checkVector(request.force, kMaxForce, "force", "N");
   if (!valid_force) return valid_force;
-  if (request.mode != ForceMode::kOneStep &&
-      sustainedForceCount() >= limits_.max_sustained_forces) {
-    return Status::error("mode: already " + std::to_string(sustainedForceCount()) +
-                         " sustained forces, the limit (clear some first)");
-  }
   if (request.mode == ForceMode::kOneStep) {
     world_.addForce(*id, request.force);
     return std::uint64_t{1};
   }
-  std::int64_t steps = -1;
-  if (request.mode == ForceMode::kDuration) {
-    if (!std::isfinite(request.duration) || request.duration <= 0.0) {
-      return Status::error("duration must be finite and > 0");
-    }
-    const Real count = std::round(request.duration / world_.config().dt);
-    if (count > static_cast<Real>(limits_.max_steps_per_request) * 100.0) {
-      return Status::error("duration is too long");
-    }
-    steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(count));
+  const auto steps = sustainedSteps(request.mode, request.duration);
+  if (!steps) return steps.status();
+  sustained_.push_back(SustainedForce{*id, request.force, *steps});
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(*steps, 0));
+}
+
+Result<std::int64_t> Simulation::sustainedSteps(const ForceMode mode, const Real duration) const {
+  if (sustainedForceCount() >= limits_.max_sustained_forces) {
+    return Status::error("mode: already " + std::to_string(sustainedForceCount()) +
+                         " sustained forces and wrenches, the limit (clear some first)");
   }
-  sustained_.push_back(SustainedForce{*id, request.force, steps});
-  return static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0));
+  if (mode != ForceMode::kDuration) return std::int64_t{-1};
+  if (!std::isfinite(duration) || duration <= 0.0) {
+    return Status::error("duration must be finite and > 0");
+  }
+  const Real count = std::round(duration / world_.config().dt);
+  if (count > static_cast<Real>(limits_.max_steps_per_request) * 100.0) {
+    return Status::error("duration is too long");
+  }
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(count));
 }
 
 Result<Vec3> Simulation::applyImpulse(const ParticleRef& ref, const Vec3& impulse) {

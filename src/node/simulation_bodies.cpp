@@ -152,34 +152,18 @@ Result<std::uint64_t> Simulation::applyBodyWrench(const WrenchRequest& request) 
   if (valid) valid = checkPosition(request.point, "reference_point");
   if (valid) valid = needsDynamic(world_, *id, "a wrench");
   if (!valid) return valid;
-  if (request.mode != ForceMode::kOneStep &&
-      sustainedForceCount() >= limits_.max_sustained_forces) {
-    return Status::error("mode: already " + std::to_string(sustainedForceCount()) +
-                         " sustained forces and wrenches, the limit (clear some first)");
-  }
-  std::int64_t steps = 1;
-  if (request.mode == ForceMode::kDuration) {
-    if (!std::isfinite(request.duration) || request.duration <= 0.0) {
-      return Status::error("duration must be finite and > 0");
-    }
-    const Real count = std::round(request.duration / world_.config().dt);
-    if (count > static_cast<Real>(limits_.max_steps_per_request) * 100.0) {
-      return Status::error("duration is too long");
-    }
-    steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(count));
-  } else if (request.mode == ForceMode::kUntilCleared) {
-    steps = -1;
-  }
   if (request.mode == ForceMode::kOneStep) {
     world_.addBodyForce(*id, request.force, request.point);
     world_.addBodyTorque(*id, request.torque);
     return std::uint64_t{1};
   }
+  const auto steps = sustainedSteps(request.mode, request.duration);
+  if (!steps) return steps.status();
   const std::size_t dense = *world_.bodies().find(*id);
   wrenches_.push_back(SustainedWrench{*id, request.force,
                                       world_.bodies().pose(dense).applyInverse(request.point),
-                                      request.torque, steps});
-  return static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0));
+                                      request.torque, *steps});
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(*steps, 0));
 }
 
 Result<Twist> Simulation::applyBodyImpulse(const BodyRef& ref, const Vec3& impulse,

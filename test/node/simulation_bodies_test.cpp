@@ -231,6 +231,37 @@ TEST(SimulationBodiesTest, DurationWrenchLastsRoundTOverDtSteps) {
   EXPECT_EQ(sim.sustainedForceCount(), 0u);
 }
 
+TEST(SimulationBodiesTest, WrenchesCountAgainstTheSustainedLimitAndItsDurationBounds) {
+  SimulationLimits limits;
+  limits.max_sustained_forces = 2;
+  Simulation sim(emptyScene(), limits);
+  ASSERT_TRUE(sim.spawnBodies({cube("box")}));
+  WrenchRequest w;
+  w.body.name = "box";
+  w.force = Vec3(1, 0, 0);
+  w.mode = ForceMode::kDuration;
+  w.duration = 1e12;  // far more steps than a request may span
+  const auto too_long = sim.applyBodyWrench(w);
+  ASSERT_FALSE(too_long);
+  EXPECT_EQ(too_long.message(), "duration is too long");
+  w.duration = 0.004;  // under a step: one step
+  const auto short_one = sim.applyBodyWrench(w);
+  ASSERT_TRUE(short_one) << short_one.message();
+  EXPECT_EQ(*short_one, 1u);
+  w.mode = ForceMode::kUntilCleared;
+  ASSERT_TRUE(sim.applyBodyWrench(w));
+  const Fingerprint full(sim);
+  const auto third = sim.applyBodyWrench(w);
+  ASSERT_FALSE(third);
+  EXPECT_EQ(third.message(),
+            "mode: already 2 sustained forces and wrenches, the limit (clear some first)");
+  EXPECT_TRUE(Fingerprint(sim) == full);
+  // A one-step wrench is not kept: the limit does not apply to it.
+  w.mode = ForceMode::kOneStep;
+  EXPECT_TRUE(sim.applyBodyWrench(w));
+  EXPECT_EQ(sim.sustainedForceCount(), 2u);
+}
+
 TEST(SimulationBodiesTest, UntilClearedWrenchActsAtTheMaterialPointUntilCleared) {
   Simulation sim(emptyScene(), SimulationLimits{});
   ASSERT_TRUE(sim.spawnBodies({cube("spun")}));

@@ -128,9 +128,12 @@ class Simulation {
   std::size_t sustainedForceCount() const { return sustained_.size() + wrenches_.size(); }
 
  private:
-  // Refused when ~max_links links and force generators exist already.
   // Room under ~max_links for `more` links and force generators.
   engine::Status checkLinkRoom(std::size_t more = 1) const;
+  // For a force or wrench kept across steps (kDuration, kUntilCleared): room under
+  // max_sustained_forces, and the steps it lasts (-1: until cleared; a duration rounds to at
+  // least one step).
+  engine::Result<std::int64_t> sustainedSteps(ForceMode mode, engine::Real duration) const;
 
   struct SustainedForce {
     engine::ParticleId particle;
