@@ -59,8 +59,12 @@ class ReconfigureTest(unittest.TestCase):
     def test_2_live_change_is_applied_recorded_and_reflected(self):
         before = self.sim.stats()
         config = self.client.update_configuration({'integrator': 'rk4', 'gravity_z': -3.0,
-                                                   'substeps': 2})
+                                                   'substeps': 2, 'body_iterations': 3,
+                                                   'body_sleep': False})
         self.assertEqual(config['integrator'], 'rk4')
+        self.assertEqual(config['body_iterations'], 3)
+        self.assertFalse(config['body_sleep'])
+        self.assertEqual(rospy.get_param(NS + '/body_iterations'), 3)
         self.assertAlmostEqual(config['gravity_z'], -3.0)
         self.assertEqual(rospy.get_param(NS + '/integrator'), 'rk4')
         self.assertEqual(rospy.get_param(NS + '/substeps'), 2)
@@ -73,6 +77,8 @@ class ReconfigureTest(unittest.TestCase):
         self.wait(lambda: self.configuration and 'integrator: rk4' in
                   self.configuration[-1].data, '~configuration with rk4')
         self.assertIn('substeps: 2', self.configuration[-1].data)
+        self.assertIn('body_iterations: 3', self.configuration[-1].data)
+        self.assertIn('body_sleep: false', self.configuration[-1].data)
         self.assertIn('gravity: [0, 0, -3]', self.configuration[-1].data)
         # The world steps with them: a free particle falls at 3 m/s^2.
         spawned = self.sim.spawn([self.particle()])

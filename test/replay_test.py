@@ -2,10 +2,10 @@
 """Records a driven node's ~commands (and nothing else) with rosbag, replays the bag into a second
 node with scripts/replay_commands.py, and expects the same final state hash; a third node with
 another integrator must be named as different (rostest: test/replay.test). The drive includes live
-reconfigures of the integrator and gravity, a ~step action that is cancelled, and bodies: spawns
-(one in a tf frame), joints (a hinge with a motor changed at runtime, a distance joint to a
-particle), a bungee from a body to a particle given in a tf frame, wrenches (one for a duration),
-impulses, teleports and removals."""
+reconfigures of the integrator, gravity and the body solver's passes, a ~step action that is
+cancelled, and bodies: spawns (one in a tf frame), joints (a hinge with a motor changed at
+runtime, a distance joint to a particle), a bungee from a body to a particle given in a tf frame,
+wrenches (one for a duration), impulses, teleports and removals."""
 import math
 import os
 import re
@@ -161,8 +161,11 @@ class ReplayTest(unittest.TestCase):
             name='axle', enabled=True, speed=-2.0, max_torque=10.0)).success)
         self.assertTrue(sim.step(5).success)
         # Live settings, recorded on ~commands and replayed through ~set_parameters.
-        config = self.reconfigure.update_configuration({'integrator': 'rk4', 'gravity_z': -4.5})
+        config = self.reconfigure.update_configuration({'integrator': 'rk4', 'gravity_z': -4.5,
+                                                        'body_iterations': 3,
+                                                        'body_relax_iterations': 1})
         self.assertEqual(config['integrator'], 'rk4')
+        self.assertEqual(config['body_iterations'], 3)
         self.assertTrue(sim.step(9).success)
         # A long ~step action, cancelled once it has reported progress: it stops at a step
         # boundary, and the steps it took are recorded.

@@ -9,8 +9,8 @@ namespace {
 auto physicsTie(const LiveSettings& s) {
   return std::tie(s.rate, s.substeps, s.integrator, s.gravity.x(), s.gravity.y(), s.gravity.z(),
                   s.auto_substep, s.divergence_policy, s.particle_collisions, s.continuous,
-                  s.particle_restitution, s.particle_friction, s.max_iterations,
-                  s.penetration_slop);
+                  s.particle_restitution, s.particle_friction, s.max_iterations, s.penetration_slop,
+                  s.body_substeps, s.body_iterations, s.body_relax_iterations, s.body_sleep);
 }
 
 template <typename Parameter, typename Value>
@@ -39,6 +39,10 @@ SimConfig toSimConfig(const LiveSettings& s) {
   c.particle_friction = s.particle_friction;
   c.max_iterations = s.max_iterations;
   c.penetration_slop = s.penetration_slop;
+  c.body_substeps = s.body_substeps;
+  c.body_iterations = s.body_iterations;
+  c.body_relax_iterations = s.body_relax_iterations;
+  c.body_sleep = s.body_sleep;
   c.publish_rate = s.publish_rate;
   c.paused = s.paused;
   return c;
@@ -58,6 +62,10 @@ LiveSettings fromSimConfig(const SimConfig& c) {
   s.particle_friction = c.particle_friction;
   s.max_iterations = c.max_iterations;
   s.penetration_slop = c.penetration_slop;
+  s.body_substeps = c.body_substeps;
+  s.body_iterations = c.body_iterations;
+  s.body_relax_iterations = c.body_relax_iterations;
+  s.body_sleep = c.body_sleep;
   s.publish_rate = c.publish_rate;
   s.paused = c.paused;
   return s;
@@ -74,11 +82,15 @@ dynamic_reconfigure::Config toRecordedConfig(const LiveSettings& s) {
   addParameter(c.doubles, "penetration_slop", s.penetration_slop);
   addParameter(c.ints, "substeps", s.substeps);
   addParameter(c.ints, "max_iterations", s.max_iterations);
+  addParameter(c.ints, "body_substeps", s.body_substeps);
+  addParameter(c.ints, "body_iterations", s.body_iterations);
+  addParameter(c.ints, "body_relax_iterations", s.body_relax_iterations);
   addParameter(c.strs, "integrator", s.integrator);
   addParameter(c.strs, "divergence_policy", s.divergence_policy);
   addParameter(c.bools, "auto_substep", s.auto_substep);
   addParameter(c.bools, "particle_collisions", s.particle_collisions);
   addParameter(c.bools, "continuous", s.continuous);
+  addParameter(c.bools, "body_sleep", s.body_sleep);
   return c;
 }
 

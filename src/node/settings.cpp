@@ -78,6 +78,10 @@ LiveSettings liveSettingsOf(const PhysicsSettings& physics, const double publish
   s.particle_friction = physics.collisions.particle_friction;
   s.max_iterations = physics.collisions.max_iterations;
   s.penetration_slop = physics.collisions.penetration_slop;
+  s.body_substeps = physics.bodies.substeps;
+  s.body_iterations = physics.bodies.iterations;
+  s.body_relax_iterations = physics.bodies.relax_iterations;
+  s.body_sleep = physics.bodies.sleep;
   s.publish_rate = publish_rate;
   s.paused = paused;
   return s;
@@ -141,6 +145,22 @@ Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const Phys
   k.penetration_slop = wanted.penetration_slop;
   const Status collisions = engine::validateCollisionSettings(k);
   if (!collisions) return collisions;
+  for (const auto& [name, value, low] :
+       {std::tuple<const char*, int, int>{"body_substeps", wanted.body_substeps, 1},
+        {"body_iterations", wanted.body_iterations, 1},
+        {"body_relax_iterations", wanted.body_relax_iterations, 0}}) {
+    if (value < low || value > 64) {
+      return Status::error(std::string(name) + ": must be in [" + std::to_string(low) +
+                           ", 64], got " + std::to_string(value));
+    }
+  }
+  engine::BodySettings& b = out.bodies;
+  b.substeps = wanted.body_substeps;
+  b.iterations = wanted.body_iterations;
+  b.relax_iterations = wanted.body_relax_iterations;
+  b.sleep = wanted.body_sleep;
+  const Status bodies = engine::validateBodySettings(b);
+  if (!bodies) return bodies;
   return out;
 }
 

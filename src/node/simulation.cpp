@@ -248,8 +248,15 @@ Status Simulation::configure(const PhysicsSettings& settings) {
   if (!valid) return valid;
   const Status collisions = engine::validateCollisionSettings(settings.collisions);
   if (!collisions) return collisions;
+  const Status bodies = engine::validateBodySettings(settings.bodies);
+  if (!bodies) return bodies;
   world_.setConfig(settings.config);
   world_.setCollisionSettings(settings.collisions);
+  // New body settings wake every body (World::setBodySettings); the same ones change nothing.
+  if (describeConfiguration(PhysicsSettings{{}, {}, settings.bodies}) !=
+      describeConfiguration(PhysicsSettings{{}, {}, world_.bodySettings()})) {
+    world_.setBodySettings(settings.bodies);
+  }
   if (settings.config.divergence_policy == engine::DivergencePolicy::kReset) {
     world_.setResetSnapshot();
   } else {

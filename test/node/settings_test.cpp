@@ -44,6 +44,10 @@ TEST(LiveSettingsTest, AppliesGoodValues) {
   wanted.gravity = Vec3(0, 0, -3);
   wanted.particle_collisions = true;
   wanted.max_iterations = 7;
+  wanted.body_substeps = 8;
+  wanted.body_iterations = 3;
+  wanted.body_relax_iterations = 1;
+  wanted.body_sleep = false;
   const auto applied = applyLiveSettings(wanted, base());
   ASSERT_TRUE(applied) << applied.message();
   EXPECT_EQ(applied.value().config.dt, 1.0 / 200.0);
@@ -51,6 +55,12 @@ TEST(LiveSettingsTest, AppliesGoodValues) {
   EXPECT_EQ(applied.value().config.gravity, Vec3(0, 0, -3));
   EXPECT_TRUE(applied.value().collisions.particle_collisions);
   EXPECT_EQ(applied.value().collisions.max_iterations, 7);
+  EXPECT_EQ(applied.value().bodies.substeps, 8);
+  EXPECT_EQ(applied.value().bodies.iterations, 3);
+  EXPECT_EQ(applied.value().bodies.relax_iterations, 1);
+  EXPECT_FALSE(applied.value().bodies.sleep);
+  // The body settings that are not live stay as they were.
+  EXPECT_EQ(applied.value().bodies.contact_hertz, base().bodies.contact_hertz);
   // And back: what the reconfigure server shows is what was applied.
   EXPECT_TRUE(sameSettings(liveSettingsOf(*applied, 30.0, false), wanted));
   EXPECT_TRUE(sameSettings(fromSimConfig(toSimConfig(wanted)), wanted));
@@ -71,6 +81,10 @@ TEST(LiveSettingsTest, RefusesBadValuesNamingTheParameter) {
       {[](LiveSettings& s) { s.penetration_slop = -1.0; }, "penetration_slop"},
       {[](LiveSettings& s) { s.max_iterations = 0; }, "max_iterations"},
       {[](LiveSettings& s) { s.publish_rate = 0.0; }, "publish_rate"},
+      {[](LiveSettings& s) { s.body_substeps = 0; }, "body_substeps: must be in [1, 64], got 0"},
+      {[](LiveSettings& s) { s.body_iterations = 65; }, "body_iterations: must be in [1, 64]"},
+      {[](LiveSettings& s) { s.body_relax_iterations = -1; },
+       "body_relax_iterations: must be in [0, 64], got -1"},
   };
   for (const auto& [change, expected] : cases) {
     LiveSettings wanted = liveSettingsOf(base(), 30.0, false);
@@ -159,6 +173,36 @@ TEST(SimulationConfigureTest, SettingsLastAcrossReset) {
   settings.config.dt = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(sim.configure(settings));
   EXPECT_EQ(sim.world().config().dt, 0.01);
+}
+
+TEST(SimulationConfigureTest, BodySettingsApplyLiveAndWakeTheBodiesOnlyWhenTheyChange) {
+  Simulation sim(scene(), SimulationLimits{});
+  engine::BodySpec spec;
+  spec.name = "crate";
+  engine::BodyShapeSpec shape;
+  shape.geometry = engine::BoxShape{Vec3::Constant(0.5)};
+  spec.shapes = {shape};
+  spec.pose.position = Vec3(5, 0, 0);
+  spec.mass = 1.0;
+  ASSERT_TRUE(sim.spawnBodies({spec}));
+  PhysicsSettings settings = sim.settings();
+  settings.config.gravity = Vec3::Zero();
+  ASSERT_TRUE(sim.configure(settings));
+  for (int i = 0; i < 60; ++i) sim.step();  // at rest without gravity: asleep after 0.5 s
+  const auto awake = [&] { return sim.world().bodies().awake(0); };
+  ASSERT_FALSE(awake());
+  settings.collisions.max_iterations = 9;  // no body setting changes: it sleeps on
+  ASSERT_TRUE(sim.configure(settings));
+  EXPECT_FALSE(awake());
+  settings.bodies.iterations = 3;
+  ASSERT_TRUE(sim.configure(settings));
+  EXPECT_EQ(sim.world().bodySettings().iterations, 3);
+  EXPECT_TRUE(awake());
+  settings.bodies.substeps = 0;
+  EXPECT_FALSE(sim.configure(settings));
+  EXPECT_EQ(sim.world().bodySettings().substeps, 4);
+  sim.reset();
+  EXPECT_EQ(sim.world().bodySettings().iterations, 3);
 }
 
 }  // namespace

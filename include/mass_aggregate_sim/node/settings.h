@@ -27,12 +27,17 @@ struct LiveSettings {
   double particle_friction = 0.0;
   int max_iterations = 20;
   double penetration_slop = 0.001;  // m
-  double publish_rate = 30.0;       // Hz, wall
+  // The body solver's (BodySettings): substeps, iterations, relax_iterations, sleep.
+  int body_substeps = 4;
+  int body_iterations = 2;
+  int body_relax_iterations = 0;
+  bool body_sleep = true;
+  double publish_rate = 30.0;  // Hz, wall
   bool paused = false;
 };
 
-// The world's physics settings in engine form. The body solver's settings come from the scene
-// (`body_solver`) and are not live: configure() keeps them.
+// The world's physics settings in engine form. Of the body solver's settings (the scene's
+// `body_solver`) four are live (LiveSettings::body_*); configure() keeps the others.
 struct PhysicsSettings {
   engine::WorldConfig config;
   engine::CollisionSettings collisions;
