@@ -42,7 +42,8 @@ Status checkNonNegative(const Real value, const Real limit, const std::string& f
                         const char* unit) {
   if (!std::isfinite(value)) return Status::error(field + ": must be finite");
   if (value < 0.0 || value > limit) {
-    return Status::error(field + ": must be in [0, " + number(limit) + "] " + unit + ", got " +
+    const std::string units = *unit != '\0' ? std::string(" ") + unit : std::string();
+    return Status::error(field + ": must be in [0, " + number(limit) + "]" + units + ", got " +
                          number(value));
   }
   return Status::ok();

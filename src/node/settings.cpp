@@ -127,12 +127,12 @@ Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const Phys
   engine::CollisionSettings& k = out.collisions;
   k.particle_collisions = wanted.particle_collisions;
   k.continuous = wanted.continuous;
-  for (const auto& [name, value, high] :
-       {std::tuple<const char*, double, double>{"particle_restitution", wanted.particle_restitution,
-                                                1.0},
-        {"particle_friction", wanted.particle_friction, 100.0},
-        {"penetration_slop", wanted.penetration_slop, 1.0}}) {
-    const Status checked = checkNonNegative(value, high, name, "");
+  for (const auto& [name, value, high, unit] :
+       {std::tuple<const char*, double, double, const char*>{"particle_restitution",
+                                                             wanted.particle_restitution, 1.0, ""},
+        {"particle_friction", wanted.particle_friction, 100.0, ""},
+        {"penetration_slop", wanted.penetration_slop, 1.0, "m"}}) {
+    const Status checked = checkNonNegative(value, high, name, unit);
     if (!checked) return checked;
   }
   if (wanted.max_iterations < 1 || wanted.max_iterations > 10000) {

@@ -5,8 +5,9 @@
 //   2: a sequence of service requests (ParticleSpec messages through toParticleSpec, then
 //      Simulation::spawn / remove / setState / applyForce / applyImpulse / addLink / removeLink /
 //      stepMany / reset, and the body requests spawnBodies / removeBodies / setBodyState /
-//      applyBodyWrench / applyBodyImpulse / addJoint / removeJoint / setHingeMotor) with arbitrary
-//      fields, on a small fixed scene with bodies and a joint.
+//      applyBodyWrench / applyBodyImpulse / addJoint / removeJoint / setHingeMotor, and live
+//      reconfigures through applyLiveSettings and Simulation::configure) with arbitrary fields, on
+//      a small fixed scene with bodies and a joint.
 // and checks the promises of docs/RELIABILITY.md: a scene that loads keeps every bound and limit,
 // a refused request answers a message and changes nothing, an accepted one keeps the limits, and a
 // non-finite state after a step is always reported. A broken promise aborts. Shared by the
@@ -30,6 +31,7 @@
 #include "mass_aggregate_sim/node/input_limits.h"
 #include "mass_aggregate_sim/node/links.h"
 #include "mass_aggregate_sim/node/scene_loader.h"
+#include "mass_aggregate_sim/node/settings.h"
 #include "mass_aggregate_sim/node/simulation.h"
 
 namespace mass_aggregate_sim {
@@ -442,7 +444,7 @@ inline void runRequests(Bytes& in) {
     const Fingerprint before(sim);
     engine::Status status = engine::Status::ok();
     bool may_change = true;
-    switch (in.byte() % 18) {
+    switch (in.byte() % 19) {
       case 0: {
         std::vector<engine::ParticleSpec> specs;
         const int n = 1 + in.byte() % 3;
@@ -631,6 +633,30 @@ inline void runRequests(Bytes& in) {
         status = sim.setHingeMotor(static_cast<engine::JointId>(in.byte() % 8), in.byte() & 1u,
                                    in.real(), in.real());
         break;
+      case 18: {
+        // A live reconfigure: a few of the settings changed, checked as the node checks them; a
+        // change they pass must be one Simulation::configure takes.
+        node::LiveSettings live = node::liveSettingsOf(sim.settings(), 30.0, false);
+        const std::uint8_t which = in.byte();
+        if (which & 1u) live.rate = in.real();
+        if (which & 2u) live.substeps = in.byte() - 8;
+        if (which & 4u) live.gravity = engine::Vec3(in.real(), in.real(), in.real());
+        if (which & 8u) live.max_iterations = in.byte() - 8;
+        if (which & 16u) live.penetration_slop = in.real();
+        if (which & 32u) live.body_substeps = in.byte() - 8;
+        if (which & 64u) live.body_iterations = in.byte() - 8;
+        if (which & 128u) {
+          live.body_relax_iterations = in.byte() - 8;
+          live.body_sleep = in.byte() & 1u;
+        }
+        const auto physics = node::applyLiveSettings(live, sim.settings());
+        status = physics.status();
+        if (physics) {
+          status = sim.configure(*physics);
+          if (!status) fail("a checked reconfigure was refused: " + status.message());
+        }
+        break;
+      }
     }
     if (!may_change) continue;
     if (!status) {
