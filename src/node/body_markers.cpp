@@ -13,15 +13,6 @@ namespace {
 using engine::Vec3;
 using visualization_msgs::Marker;
 
-std_msgs::ColorRGBA rgba(const float r, const float g, const float b, const float a = 1.0f) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = a;
-  return c;
-}
-
 // Marker ids of one body's parts: 256 per body slot (at most kMaxShapesPerBody = 64 shapes of at
 // most 4 parts), so a body keeps its ids while it lives.
 int bodyPartId(const std::uint64_t body_id, const std::uint32_t shape, const std::size_t part) {

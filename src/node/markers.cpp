@@ -15,7 +15,9 @@ using engine::Real;
 using engine::Vec3;
 using visualization_msgs::Marker;
 
-std_msgs::ColorRGBA color(const float r, const float g, const float b, const float a = 1.0f) {
+}  // namespace
+
+std_msgs::ColorRGBA rgba(const float r, const float g, const float b, const float a) {
   std_msgs::ColorRGBA c;
   c.r = r;
   c.g = g;
@@ -24,13 +26,11 @@ std_msgs::ColorRGBA color(const float r, const float g, const float b, const flo
   return c;
 }
 
-}  // namespace
-
 std_msgs::ColorRGBA tensionColor(const double tension, const double tension_scale) {
   const float t = static_cast<float>(std::clamp(tension / tension_scale, -1.0, 1.0));
   // White at zero, fading to red when stretched and to blue when compressed.
-  if (t >= 0.0f) return color(1.0f, 1.0f - t, 1.0f - t);
-  return color(1.0f + t, 1.0f + t, 1.0f);
+  if (t >= 0.0f) return rgba(1.0f, 1.0f - t, 1.0f - t);
+  return rgba(1.0f + t, 1.0f + t, 1.0f);
 }
 
 MarkerBuilder::MarkerBuilder(std::string frame_id, const double tension_scale,
@@ -118,7 +118,7 @@ void MarkerBuilder::addParticles(const WorldSnapshot& world, const ros::Time& st
     // A point particle is still drawn, as a dot of 2 cm.
     const double diameter = std::max(2.0 * key.first, 0.02);
     m.scale.x = m.scale.y = m.scale.z = diameter;
-    m.color = key.second ? color(1.0f, 0.55f, 0.1f) : color(0.5f, 0.5f, 0.5f);
+    m.color = key.second ? rgba(1.0f, 0.55f, 0.1f) : rgba(0.5f, 0.5f, 0.5f);
   }
   for (std::size_t i = 0; i < n; ++i) {
     lists[list_of[{radius[i], inverse_mass[i] > 0.0}]].points.push_back(toPointMsg(x.col(i)));
@@ -131,7 +131,7 @@ void MarkerBuilder::addLinks(const WorldSnapshot& world, const ros::Time& stamp,
   if (world.links.empty()) return;
   Marker lines = makeMarker("links", 0, Marker::LINE_LIST, stamp);
   lines.scale.x = 0.02;
-  lines.color = color(1.0f, 1.0f, 1.0f);
+  lines.color = rgba(1.0f, 1.0f, 1.0f);
   lines.points.reserve(2 * world.links.size());
   lines.colors.reserve(2 * world.links.size());
   for (const LinkSegment& link : world.links) {
@@ -146,9 +146,9 @@ void MarkerBuilder::addLinks(const WorldSnapshot& world, const ros::Time& stamp,
 
 void MarkerBuilder::addColliders(const engine::Colliders& colliders, const ros::Time& stamp,
                                  visualization_msgs::MarkerArray& out) const {
-  const std_msgs::ColorRGBA grey = color(0.5f, 0.52f, 0.55f, 1.0f);
+  const std_msgs::ColorRGBA grey = rgba(0.5f, 0.52f, 0.55f, 1.0f);
   // Lighter for a surface: seen at a grazing angle it would vanish into the background.
-  const std_msgs::ColorRGBA light = color(0.9f, 0.9f, 0.95f, 1.0f);
+  const std_msgs::ColorRGBA light = rgba(0.9f, 0.9f, 0.95f, 1.0f);
   // Each collider is drawn as its kind describes it (ShapeKind::describe), one marker per part:
   // id = 4 * collider id + part.
   colliders.forEach([&](const auto& shapes) {

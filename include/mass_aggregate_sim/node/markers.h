@@ -56,6 +56,8 @@ class MarkerBuilder {
   std::set<std::pair<std::string, int>> published_;
 };
 
+// An RGBA colour, each component in [0, 1].
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
 // The colour of a link carrying `tension` (N, negative when compressed).
 std_msgs::ColorRGBA tensionColor(double tension, double tension_scale);
 // The colour of a body: by type, dimmed while it sleeps.
