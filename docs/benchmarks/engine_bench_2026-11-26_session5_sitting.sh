@@ -8,7 +8,8 @@
 # built Release in its own workspace from a detached worktree, with the bench/ sources of 4992cc2
 # and the shim of the sitting of 2026-11-26 (engine_bench_2026-11-26_sitting.sh): an
 # engine/world/world.h including its engine/world.h, and World::addCollider / addGenerator
-# forwarding to addPlane / addSphere / addBox / addCapsule / addSpring; no engine code changed.
+# forwarding to addPlane / addSphere / addBox / addCapsule / addSpring; no engine code changed
+# (engine_bench_5db094a_shim.patch, with the commands that rebuild it).
 set -u
 cd /tmp/sit3
 out=rounds.txt
