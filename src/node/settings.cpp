@@ -34,6 +34,13 @@ std::string readable(const double value) {
 
 const char* boolText(const bool value) { return value ? "true" : "false"; }
 
+// A count in [low, high], refused as "name: must be in [low, high], got value".
+Status checkCount(const int value, const int low, const int high, const char* name) {
+  if (value >= low && value <= high) return Status::ok();
+  return Status::error(std::string(name) + ": must be in [" + std::to_string(low) + ", " +
+                       std::to_string(high) + "], got " + std::to_string(value));
+}
+
 class Fnv {
  public:
   void add(const void* data, const std::size_t size) {
@@ -92,9 +99,8 @@ Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const Phys
     return Status::error("rate: must be in (0, " + readable(kMaxRate) + "] Hz, got " +
                          readable(wanted.rate));
   }
-  if (wanted.substeps < 1 || wanted.substeps > 1000) {
-    return Status::error("substeps: must be in [1, 1000], got " + std::to_string(wanted.substeps));
-  }
+  const Status substeps = checkCount(wanted.substeps, 1, 1000, "substeps");
+  if (!substeps) return substeps;
   const auto integrator = engine::parseIntegrator(wanted.integrator);
   if (!integrator) {
     return Status::error("integrator: unknown integrator " + quoteInput(wanted.integrator) +
@@ -135,10 +141,8 @@ Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const Phys
     const Status checked = checkNonNegative(value, high, name, unit);
     if (!checked) return checked;
   }
-  if (wanted.max_iterations < 1 || wanted.max_iterations > 10000) {
-    return Status::error("max_iterations: must be in [1, 10000], got " +
-                         std::to_string(wanted.max_iterations));
-  }
+  const Status iterations = checkCount(wanted.max_iterations, 1, 10000, "max_iterations");
+  if (!iterations) return iterations;
   k.particle_restitution = wanted.particle_restitution;
   k.particle_friction = wanted.particle_friction;
   k.max_iterations = wanted.max_iterations;
@@ -149,10 +153,8 @@ Result<PhysicsSettings> applyLiveSettings(const LiveSettings& wanted, const Phys
        {std::tuple<const char*, int, int>{"body_substeps", wanted.body_substeps, 1},
         {"body_iterations", wanted.body_iterations, 1},
         {"body_relax_iterations", wanted.body_relax_iterations, 0}}) {
-    if (value < low || value > 64) {
-      return Status::error(std::string(name) + ": must be in [" + std::to_string(low) +
-                           ", 64], got " + std::to_string(value));
-    }
+    const Status checked = checkCount(value, low, 64, name);
+    if (!checked) return checked;
   }
   engine::BodySettings& b = out.bodies;
   b.substeps = wanted.body_substeps;
