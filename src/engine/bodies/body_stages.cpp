@@ -431,7 +431,6 @@ void solveBodyConstraints(StepContext& ctx) {
   if (!ctx.bodies || !ctx.body_ws->prepared) return;
   loadParticles(ctx);
   warmStart(ctx);
-  takeSeparations(ctx.body_ws->constraints, ctx.body_ws->solver);
   for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
   BodyWorkspace& ws = *ctx.body_ws;
   propagateShock(ws.shock_rows, ws.constraints, ws.solver, contactPass(ctx, true, false));

@@ -1,19 +1,17 @@
 #include "engine/bodies/contact_solver.h"
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
+
+#include "engine/bodies/point_block_inverse.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
 using PointVector = Eigen::Matrix<Real, Manifold::kMaxPoints, 1>;
-// A square block of at most four points, held without the heap.
-using SmallBlock = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, Manifold::kMaxPoints,
-                                 Manifold::kMaxPoints>;
 using SmallVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, Manifold::kMaxPoints, 1>;
 
 // The two sides of a contact as the rows see them: their solver bodies, or a body at rest for a
@@ -73,9 +71,35 @@ void pushNormal(const ContactConstraint& c, Sides& s, const int k, const Real j)
   pushNormals<kPseudo>(c, s, &k, 1, &j);
 }
 
+// How far the anchors of c's points have moved apart along n since the step began:
+//   n.(d_b - d_a), d = dp + dq r - r the move of a point fixed to a body at r from its centre,
+// and n.(dq r - r) = (dq^T n - n).r: the normal is taken back into each side's starting frame
+// once for all the points, leaving a dot product per point and side.
+class NormalDisplacement {
+ public:
+  NormalDisplacement(const ContactConstraint& c, const Sides& s)
+      : shift_(c.normal.dot(s.b.dp - s.a.dp)),
+        back_a_(s.a.dq_matrix.transpose() * c.normal - c.normal),
+        back_b_(s.b.dq_matrix.transpose() * c.normal - c.normal) {}
+  Real of(const ContactConstraintPoint& cp) const {
+    return shift_ + back_b_.dot(cp.r_b) - back_a_.dot(cp.r_a);
+  }
+
+ private:
+  Real shift_;
+  Vec3 back_a_;
+  Vec3 back_b_;
+};
+
 // The separation of point cp now: as prepared, moved on by the anchors' displacements since.
 Real separationNow(const ContactConstraint& c, const ContactConstraintPoint& cp, const Sides& s) {
-  return cp.separation + c.normal.dot(s.b.displacementOf(cp.r_b) - s.a.displacementOf(cp.r_a));
+  return cp.separation + NormalDisplacement(c, s).of(cp);
+}
+// Every point's separation now, in ContactConstraintPoint::current.
+void takeSeparations(ContactConstraint& c, const Sides& s) {
+  const NormalDisplacement moved(c, s);
+  for (int k = 0; k < c.count; ++k)
+    c.points[k].current = c.points[k].separation + moved.of(c.points[k]);
 }
 
 // Whether point cp closes within this substep: v_n < -s / h for a gap s > 0, v_n < 0 for overlap.
@@ -105,70 +129,6 @@ SmallBlock coupledMass(const ContactConstraint& c, const SolverBody& a, const So
   return k;
 }
 
-// The pseudo-inverse of a symmetric K: eigenvalues below a millionth of the largest count as zero.
-// A face's four coplanar points make K singular (rank 3: push, and turn about two axes), and
-// closing speeds that differ by rounding are then not quite in its range: an inverse would answer
-// with huge opposite impulses on alternate corners; the pseudo-inverse gives the least-squares,
-// least-norm share.
-template <int N>
-SmallBlock pseudoInverseOf(const SmallBlock& k) {
-  using Fixed = Eigen::Matrix<Real, N, N>;
-  const Fixed fixed = k;
-  Eigen::SelfAdjointEigenSolver<Fixed> eigen;
-  if constexpr (N <= 3) {
-    eigen.computeDirect(fixed);
-  } else {
-    eigen.compute(fixed);
-  }
-  const auto& values = eigen.eigenvalues();
-  const Real floor = 1e-6 * values.cwiseAbs().maxCoeff();
-  Eigen::Matrix<Real, N, 1> inverted;
-  for (int i = 0; i < N; ++i) inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
-  return eigen.eigenvectors() * inverted.asDiagonal() * eigen.eigenvectors().transpose();
-}
-
-// The same for two points, in closed form: the eigenvalues of [[a, b], [b, c]] are
-// m +- r (m = (a + c) / 2, r = sqrt(((a - c) / 2)^2 + b^2)); both above the floor, the inverse
-// [[c, -b], [-b, a]] / (a c - b^2); else only the larger, along its eigenvector u: u u^T / (m + r).
-SmallBlock pseudoInverseOfTwo(const SmallBlock& k) {
-  const Real a = k(0, 0);
-  const Real b = k(0, 1);
-  const Real c = k(1, 1);
-  const Real m = 0.5 * (a + c);
-  const Real half_gap = 0.5 * (a - c);
-  const Real r = std::sqrt(half_gap * half_gap + b * b);
-  const Real large = m + r;
-  const Real small = m - r;
-  SmallBlock inverse = SmallBlock::Zero(2, 2);
-  if (large <= 0.0) return inverse;
-  if (small > 1e-6 * large) {
-    const Real det = a * c - b * b;
-    inverse << c / det, -b / det, -b / det, a / det;
-    return inverse;
-  }
-  // (K - large I) u = 0: u along (b, large - a), or (large - c, b), whichever is longer.
-  Eigen::Vector2d u(b, large - a);
-  const Eigen::Vector2d other(large - c, b);
-  if (other.squaredNorm() > u.squaredNorm()) u = other;
-  if (u.squaredNorm() == 0.0) u = Eigen::Vector2d(1.0, 0.0);
-  u.normalize();
-  inverse = (u * u.transpose()) / large;
-  return inverse;
-}
-
-SmallBlock pseudoInverse(const SmallBlock& k) {
-  switch (k.rows()) {
-    case 1:
-      return SmallBlock::Constant(1, 1, k(0, 0) > 0.0 ? 1.0 / k(0, 0) : 0.0);
-    case 2:
-      return pseudoInverseOfTwo(k);
-    case 3:
-      return pseudoInverseOf<3>(k);
-    default:
-      return pseudoInverseOf<4>(k);
-  }
-}
-
 // K^+ of a manifold's four points through the space their rows span. They share the normal n, so
 // a point's angular parts differ from the mean point's only by where it lies in the contact plane
 // (d_i = x_i - mean, alpha_i = d_i.t0, beta_i = d_i.t1; t0 x n = -t1, t1 x n = t0):
@@ -176,8 +136,8 @@ SmallBlock pseudoInverse(const SmallBlock& k) {
 // so K = A D A^T with A_i = [1, alpha_i, beta_i] and D the 3x3 coupled mass of the mean point's
 // row and the two turns, rank 3 at most. With A^T A = L L^T, Q = A L^-T has orthonormal columns
 // and K = Q S Q^T, S = L^T D L: K's eigenvalues other than its structural zero are S's, and
-// K^+ = Q S^+ Q^T with the same floor as pseudoInverseOf. False when the points are nearly on a
-// line (A^T A near singular): the caller inverts K itself.
+// K^+ = Q S^+ Q^T with the same floor (point_block_inverse.h). False when the points are nearly on
+// a line (A^T A near singular): the caller inverts K itself.
 bool pseudoInverseInPlane(const ContactConstraint& c, const SolverBody& a, const SolverBody& b,
                           SmallBlock& inverse) {
   const Vec3& n = c.normal;
@@ -214,15 +174,7 @@ bool pseudoInverseInPlane(const ContactConstraint& c, const SolverBody& a, const
   }
   const Mat3 l_inverse = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
   const Eigen::Matrix<Real, 4, 3> q = span * l_inverse.transpose();
-  const Mat3 inner = l.transpose() * d * l;
-  Eigen::SelfAdjointEigenSolver<Mat3> eigen;
-  eigen.computeDirect(inner);
-  const Vec3& values = eigen.eigenvalues();
-  const Real floor = 1e-6 * values.cwiseAbs().maxCoeff();
-  Vec3 inverted;
-  for (int i = 0; i < 3; ++i) inverted[i] = values[i] > floor ? 1.0 / values[i] : 0.0;
-  const Eigen::Matrix<Real, 4, 3> qv = q * eigen.eigenvectors();
-  inverse = qv * inverted.asDiagonal() * qv.transpose();
+  inverse = q * pseudoInverse(Mat3(l.transpose() * d * l)) * q.transpose();
   return true;
 }
 
@@ -492,45 +444,58 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
 
 void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {
   for (ContactConstraint& c : constraints) {
-    const Sides s(c, bodies);
-    for (int k = 0; k < c.count; ++k) c.points[k].current = separationNow(c, c.points[k], s);
+    takeSeparations(c, Sides(c, bodies));
   }
 }
 
-void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
-                       const ContactPass& pass) {
-  for (ContactConstraint& c : constraints) {
-    Sides s(c, bodies);
-    // Impacts first, at the velocities the bodies arrive with (a warm start would change them).
-    if (!c.impact && c.restitution > 0.0) {
-      for (int k = 0; k < c.count; ++k) {
-        const ContactConstraintPoint& cp = c.points[k];
-        const Real vn = normalVelocity(c, cp, s);
-        if (vn < -pass.restitution_threshold && closes(vn, separationNow(c, cp, s), pass.h)) {
-          resolveImpact(c, s, pass.h);
-          break;
-        }
-      }
-    }
-    if (c.impact) continue;
-    // The points' impulses P_k together: -sum P on a's momentum, -sum r_a x P on its angular
-    // momentum, + on b.
-    Vec3 linear = Vec3::Zero();
-    Vec3 angular_a = Vec3::Zero();
-    Vec3 angular_b = Vec3::Zero();
+namespace {
+
+// Whether the contact's impact was resolved now (which moves its bodies).
+bool warmStart(ContactConstraint& c, Sides& s, const ContactPass& pass) {
+  // Impacts first, at the velocities the bodies arrive with (a warm start would change them).
+  if (!c.impact && c.restitution > 0.0) {
     for (int k = 0; k < c.count; ++k) {
       const ContactConstraintPoint& cp = c.points[k];
-      const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
-                     cp.tangent_impulse[1] * c.tangent[1];
-      linear += p;
-      angular_a += cp.r_a.cross(p);
-      angular_b += cp.r_b.cross(p);
+      const Real vn = normalVelocity(c, cp, s);
+      if (vn < -pass.restitution_threshold && closes(vn, separationNow(c, cp, s), pass.h)) {
+        resolveImpact(c, s, pass.h);
+        return true;
+      }
     }
-    s.a.v -= c.inverse_mass_a * linear;
-    s.a.w -= s.a.inverse_inertia * angular_a;
-    s.b.v += c.inverse_mass_b * linear;
-    s.b.w += s.b.inverse_inertia * angular_b;
   }
+  if (c.impact) return false;
+  // The points' impulses P_k together: -sum P on a's momentum, -sum r_a x P on its angular
+  // momentum, + on b.
+  Vec3 linear = Vec3::Zero();
+  Vec3 angular_a = Vec3::Zero();
+  Vec3 angular_b = Vec3::Zero();
+  for (int k = 0; k < c.count; ++k) {
+    const ContactConstraintPoint& cp = c.points[k];
+    const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
+                   cp.tangent_impulse[1] * c.tangent[1];
+    linear += p;
+    angular_a += cp.r_a.cross(p);
+    angular_b += cp.r_b.cross(p);
+  }
+  s.a.v -= c.inverse_mass_a * linear;
+  s.a.w -= s.a.inverse_inertia * angular_a;
+  s.b.v += c.inverse_mass_b * linear;
+  s.b.w += s.b.inverse_inertia * angular_b;
+  return false;
+}
+
+}  // namespace
+
+void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+                       const ContactPass& pass) {
+  bool moved = false;
+  for (ContactConstraint& c : constraints) {
+    Sides s(c, bodies);
+    moved |= warmStart(c, s, pass);
+    takeSeparations(c, s);
+  }
+  // An impact moves its bodies: the contacts taken before it on the same bodies are behind.
+  if (moved) takeSeparations(constraints, bodies);
 }
 
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
@@ -627,9 +592,7 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
       upper.points[k].tangent_impulse[1] = c.points[k].tangent_impulse[1];
     }
     Sides s(upper, bodies);
-    for (int k = 0; k < upper.count; ++k) {
-      upper.points[k].current = separationNow(upper, upper.points[k], s);
-    }
+    takeSeparations(upper, s);
     if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
     if (upper.friction > 0.0) solveFriction(upper, s);
   }

@@ -61,11 +61,12 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const Vec3& gravity, Real h);
 
 // Resolves the impacts of the substep (restitution: contact_solver.h's top), then applies every
-// other contact's impulses of the last substep again.
+// other contact's impulses of the last substep again, and takes each point's separation for the
+// passes (takeSeparations) in the same sweep over the contacts.
 void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
                        const ContactPass& pass);
 // Each point's separation now (ContactConstraintPoint::current), for the passes of a substep:
-// after the warm start (an impact moves its bodies) and after the positions move.
+// after the positions move (the warm start takes them itself).
 void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies);
 // One pass over the contacts; with use_bias the overlap is pushed out (softly, at most
 // max_push_speed), speculative gaps may close no faster than they can within h, and impacts are

@@ -40,9 +40,6 @@ struct SolverBody {
     pv += inverse_mass * p;
     pw += inverse_inertia * r.cross(p);
   }
-  // Where a point fixed to the body at r (from the centre of mass, at the step's start) is now,
-  // relative to where it was: dp + dq r - r.
-  Vec3 displacementOf(const Vec3& r) const { return dp + dq_matrix * r - r; }
 };
 
 // The solver body index of a side that never moves.
