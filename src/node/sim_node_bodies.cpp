@@ -48,6 +48,15 @@ Result<ReferenceFrame> SimNode::referenceFrame(const std::string& frame) const {
   return out;
 }
 
+engine::Result<SimNode::FramedBody> SimNode::framedBody(const std::string& reference_frame,
+                                                        const BodyRef& ref) const {
+  const auto frame = referenceFrame(reference_frame);
+  if (!frame) return engine::Status::error("reference_frame: " + frame.message());
+  const auto id = sim_.resolveBody(ref);
+  if (!id) return id.status();
+  return FramedBody{*frame, *id};
+}
+
 bool SimNode::onSpawnBody(SpawnBody::Request& req, SpawnBody::Response& res) {
   if (req.bodies.size() > params_.limits.max_bodies) {
     return answer(res, false,
@@ -118,28 +127,25 @@ bool SimNode::onSetBodyState(SetBodyState::Request& req, SetBodyState::Response&
   }
   const BodyRef ref{req.id, req.name};
   return runOnWorldThread(res, [&] {
-    const auto frame = referenceFrame(req.reference_frame);
-    if (!frame) {
-      answer(res, false, "reference_frame: " + frame.message());
+    const auto target = framedBody(req.reference_frame, ref);
+    if (!target) {
+      answer(res, false, target.message());
       return;
     }
-    const auto id = sim_.resolveBody(ref);
-    if (!id) {
-      answer(res, false, id.message());
-      return;
-    }
+    const ReferenceFrame& frame = target.value().frame;
     SetBodyState::Request resolved = req;
     resolved.reference_frame.clear();
     std::optional<Transform> pose;
     std::optional<Twist> twist;
     if (req.set_pose) {
-      pose = poseToWorld(*frame, fromMsg(req.pose));
+      pose = poseToWorld(frame, fromMsg(req.pose));
       resolved.pose = toPoseMsg(*pose);
     }
     if (req.set_twist) {
       const engine::BodyStore& bodies = sim_.world().bodies();
-      const Vec3 origin = pose ? pose->position : bodies.pose(*bodies.find(*id)).position;
-      twist = twistToWorld(*frame, origin, fromMsg(req.twist));
+      const Vec3 origin =
+          pose ? pose->position : bodies.pose(*bodies.find(target.value().id)).position;
+      twist = twistToWorld(frame, origin, fromMsg(req.twist));
       resolved.twist = toTwistMsg(*twist);
     }
     const Status set = sim_.setBodyState(ref, pose, twist);
@@ -155,25 +161,21 @@ bool SimNode::onSetBodyState(SetBodyState::Request& req, SetBodyState::Response&
 bool SimNode::onGetBodyState(GetBodyState::Request& req, GetBodyState::Response& res) {
   const BodyRef ref{req.id, req.name};
   return runOnWorldThread(res, [&] {
-    const auto frame = referenceFrame(req.reference_frame);
-    if (!frame) {
-      answer(res, false, "reference_frame: " + frame.message());
+    const auto target = framedBody(req.reference_frame, ref);
+    if (!target) {
+      answer(res, false, target.message());
       return;
     }
-    const auto id = sim_.resolveBody(ref);
-    if (!id) {
-      answer(res, false, id.message());
-      return;
-    }
+    const ReferenceFrame& frame = target.value().frame;
     const engine::World& world = sim_.world();
-    const std::size_t dense = *world.bodies().find(*id);
+    const std::size_t dense = *world.bodies().find(target.value().id);
     const Transform pose = world.bodies().pose(dense);
     res.header.stamp = ros::Time::now();
     res.header.frame_id = req.reference_frame.empty() ? params_.frame_id : req.reference_frame;
     res.step = world.stepCount();
     res.time = world.time();
-    res.pose = toPoseMsg(poseInFrame(*frame, pose));
-    res.twist = toTwistMsg(twistInFrame(*frame, pose.position, bodyTwist(world.bodies(), dense)));
+    res.pose = toPoseMsg(poseInFrame(frame, pose));
+    res.twist = toTwistMsg(twistInFrame(frame, pose.position, bodyTwist(world.bodies(), dense)));
     res.sleeping =
         world.bodies().type(dense) != engine::BodyType::kFixed && !world.bodies().awake(dense);
     res.mass = world.bodies().mass(dense);

@@ -167,6 +167,14 @@ class SimNode {
   // World thread: a body's name is that body's frame as it is and moves now; any other name goes
   // to frameToWorld (taken as still); empty or ~frame_id is the world.
   engine::Result<ReferenceFrame> referenceFrame(const std::string& frame) const;
+  // World thread: a body request's reference_frame and the body it names, both resolved (the
+  // refusal names the field that failed).
+  struct FramedBody {
+    ReferenceFrame frame;
+    engine::BodyId id;
+  };
+  engine::Result<FramedBody> framedBody(const std::string& reference_frame,
+                                        const BodyRef& ref) const;
   // Publishes an accepted request on ~commands, stamped with the step it was applied at, the
   // state hash and the configuration at that boundary (before the request).
   template <typename Request>
