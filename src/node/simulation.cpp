@@ -252,11 +252,7 @@ Status Simulation::configure(const PhysicsSettings& settings) {
   if (!bodies) return bodies;
   world_.setConfig(settings.config);
   world_.setCollisionSettings(settings.collisions);
-  // New body settings wake every body (World::setBodySettings); the same ones change nothing.
-  if (describeConfiguration(PhysicsSettings{{}, {}, settings.bodies}) !=
-      describeConfiguration(PhysicsSettings{{}, {}, world_.bodySettings()})) {
-    world_.setBodySettings(settings.bodies);
-  }
+  world_.setBodySettings(settings.bodies);  // wakes every body only when they change
   if (settings.config.divergence_policy == engine::DivergencePolicy::kReset) {
     world_.setResetSnapshot();
   } else {

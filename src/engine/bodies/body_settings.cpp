@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -13,6 +14,22 @@ Status positive(const Real value, const char* name) {
 }
 
 }  // namespace
+
+namespace {
+
+auto fields(const BodySettings& s) {
+  return std::tie(s.substeps, s.iterations, s.relax_iterations, s.guess_loads, s.shock_propagation,
+                  s.contact_hertz, s.contact_damping_ratio, s.joint_hertz, s.joint_damping_ratio,
+                  s.max_push_speed, s.speculative_distance, s.linear_slop, s.restitution_threshold,
+                  s.sleep, s.sleep_speed, s.time_to_sleep, s.continuous, s.gyroscopic,
+                  s.runaway_speed);
+}
+// A field added to BodySettings changes its size: add it to fields() too, then restate the size.
+static_assert(sizeof(BodySettings) == 120, "BodySettings changed: list its fields in fields()");
+
+}  // namespace
+
+bool operator==(const BodySettings& a, const BodySettings& b) { return fields(a) == fields(b); }
 
 Status validateBodySettings(const BodySettings& s) {
   if (s.substeps < 1 || s.substeps > 64) return Status::error("substeps must be in [1, 64]");

@@ -165,6 +165,7 @@ Status World::wakeBody(const BodyId id) { return bodyForRequest(id).status(); }
 Status World::setBodySettings(const BodySettings& settings) {
   const Status valid = validateBodySettings(settings);
   if (!valid) return valid;
+  if (settings == body_settings_) return Status::ok();
   body_settings_ = settings;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     if (bodies_.type(i) != BodyType::kFixed) bodies_.setAwake(i, true);

@@ -248,6 +248,31 @@ TEST(BodySleep, AStackSleepsAndWakesAsOneIsland) {
   }
 }
 
+TEST(BodySleep, NewBodySettingsWakeEveryBodyAndTheSameOnesNone) {
+  const SleepingScene s = sleepingScene();
+  ASSERT_TRUE(asleep(s.world, s.lower) && asleep(s.world, s.upper) && asleep(s.world, s.apart));
+  SleepingScene same = s;
+  ASSERT_TRUE(same.world.setBodySettings(s.world.bodySettings()));
+  EXPECT_TRUE(asleep(same.world, s.lower) && asleep(same.world, s.upper) &&
+              asleep(same.world, s.apart));
+  // Any field that differs counts, the first and the last of the struct among them.
+  const std::vector<std::function<void(BodySettings&)>> changes = {
+      [](BodySettings& b) { b.substeps += 1; }, [](BodySettings& b) { b.iterations += 1; },
+      [](BodySettings& b) { b.guess_loads = !b.guess_loads; },
+      [](BodySettings& b) { b.shock_propagation = !b.shock_propagation; },
+      [](BodySettings& b) { b.runaway_speed *= 2.0; }};
+  for (std::size_t k = 0; k < changes.size(); ++k) {
+    SleepingScene changed = s;
+    BodySettings settings = s.world.bodySettings();
+    changes[k](settings);
+    ASSERT_TRUE(changed.world.setBodySettings(settings)) << "change " << k;
+    EXPECT_EQ(changed.world.bodySettings(), settings) << "change " << k;
+    EXPECT_FALSE(asleep(changed.world, s.lower)) << "change " << k;
+    EXPECT_FALSE(asleep(changed.world, s.upper)) << "change " << k;
+    EXPECT_FALSE(asleep(changed.world, s.apart)) << "change " << k;
+  }
+}
+
 TEST(BodySleep, EveryRequestOnABodyWakesItsIsland) {
   const SleepingScene s = sleepingScene();
   ASSERT_TRUE(asleep(s.world, s.lower) && asleep(s.world, s.upper) && asleep(s.world, s.apart));

@@ -64,6 +64,10 @@ struct BodySettings {
   Real runaway_speed = 1e4;
 };
 
+// Every field equal (body_settings.cpp lists them; a field added here must be added there).
+bool operator==(const BodySettings& a, const BodySettings& b);
+inline bool operator!=(const BodySettings& a, const BodySettings& b) { return !(a == b); }
+
 // Finite values in range: substeps in [1, 64], iterations in [1, 64], relax iterations in
 // [0, 64], frequencies > 0, damping ratios >= 0, speeds,
 // distances and times > 0 (slop >= 0).

@@ -149,6 +149,8 @@ class World {
                           const Vec3& angular_impulse = Vec3::Zero());
   Status wakeBody(BodyId id);
   const BodyStore& bodies() const { return bodies_; }
+  // Settings that differ from the current ones wake every body (a sleeping pile may no longer
+  // rest under them); the same settings change nothing.
   Status setBodySettings(const BodySettings& settings);
   const BodySettings& bodySettings() const { return body_settings_; }
   // Every body contact with at least one point, as of the last step, in the solver's order.
