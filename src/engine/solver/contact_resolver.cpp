@@ -390,21 +390,21 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
       const bool warm_friction = found >= 0 && !warm_friction_.empty();
       const Real previous = found >= 0 ? warm_normal_[found] : 0.0;
       const Vec3* const previous_friction = warm_friction ? &warm_friction_[found] : nullptr;
-      if (!b && !(c.friction > 0.0)) {
+      if (!b) {
         // The usual isolated contact (a ball on the ground): solved four at a time.
         batch_contact_[batch_count_] = static_cast<std::uint32_t>(k);
         batch_previous_[batch_count_] = previous;
+        for (int d = 0; d < 3; ++d) {
+          batch_previous_friction_[3 * batch_count_ + d] =
+              previous_friction ? (*previous_friction)[d] : 0.0;
+        }
+        batch_rubs_ = batch_rubs_ || c.friction > 0.0;
         if (++batch_count_ == kBatchSize)
           flushIsolatedBatch(contacts, x, v, inverse_mass, acceleration, h, slop);
         continue;
       }
-      if (b) {
-        solveIsolated<true>(g, c, x, v, inverse_mass, acceleration, h, slop, previous,
-                            previous_friction);
-      } else {
-        solveIsolated<false>(g, c, x, v, inverse_mass, acceleration, h, slop, previous,
-                             previous_friction);
-      }
+      solveIsolated<true>(g, c, x, v, inverse_mass, acceleration, h, slop, previous,
+                          previous_friction);
       continue;
     }
     const std::size_t row_index = r++;
@@ -509,10 +509,14 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
   flushIsolatedBatch(contacts, x, v, inverse_mass, acceleration, h, slop);
   for (std::size_t e = whole; e < whole + rest; ++e) {
     const std::uint32_t k = batch_contact_[e];
+    const Vec3 previous_friction(batch_previous_friction_[3 * e],
+                                 batch_previous_friction_[3 * e + 1],
+                                 batch_previous_friction_[3 * e + 2]);
     solveIsolated<false>(base + k, contacts[k], x, v, inverse_mass, acceleration, h, slop,
-                         batch_previous_[e], nullptr);
+                         batch_previous_[e], &previous_friction);
   }
   batch_count_ = 0;
+  batch_rubs_ = false;
   row_count_ = r;
   warm_cursor_ = cursor;
 }
@@ -526,6 +530,7 @@ void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, V
   in.contacts = contacts.data();
   in.contact_index = batch_contact_.data();
   in.previous_impulse = batch_previous_.data();
+  in.previous_friction = batch_previous_friction_.data();
   in.count = batch_count_;
   in.inverse_mass = inverse_mass.data();
   in.acceleration = acceleration.data();
@@ -536,8 +541,13 @@ void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, V
   in.inverse_follow_scale = inverse_follow_scale_;
   const std::size_t touched_before = touched_.size();
   touched_.resize(touched_before + batch_count_);
+  if (batch_rubs_ && next_warm_friction_.empty()) {
+    next_warm_friction_.assign(next_warm_key_.size(), Vec3::Zero());
+  }
   IsolatedBatchOutputs out;
   out.next_warm_normal = next_warm_normal_.data() + batch_base_;
+  out.next_warm_friction =
+      next_warm_friction_.empty() ? nullptr : next_warm_friction_[batch_base_].data();
   out.touched = touched_.data() + touched_before;
   out.max_penetration = isolated_max_penetration_;
   out.max_closing = isolated_max_closing_;
@@ -547,7 +557,9 @@ void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, V
   isolated_max_penetration_ = out.max_penetration;
   isolated_max_closing_ = out.max_closing;
   isolated_corrected_ = out.corrected;
+  any_friction_ = any_friction_ || out.rubbed;
   batch_count_ = 0;
+  batch_rubs_ = false;
 }
 
 template <bool kBackward>

@@ -234,11 +234,13 @@ class ContactResolver {
   Real isolated_max_penetration_ = 0.0;
   Real isolated_max_closing_ = 0.0;
   bool isolated_corrected_ = false;
-  // Isolated contacts without b or friction waiting to be solved four at a time: their index and
-  // warm start.
+  // Isolated contacts without b waiting to be solved four at a time: their index and warm start
+  // (the friction one xyz at 3e, zero when none), and whether one of them has friction.
   static constexpr std::size_t kBatchSize = 64;
   std::array<std::uint32_t, kBatchSize> batch_contact_{};
   std::array<Real, kBatchSize> batch_previous_{};
+  std::array<Real, 3 * kBatchSize> batch_previous_friction_{};
+  bool batch_rubs_ = false;
   std::size_t batch_count_ = 0;
   std::size_t batch_base_ = 0;          // the batch's contacts are the substep's from this index on
   std::size_t warm_cursor_ = 0;         // where the next contact's warm start is looked for first

@@ -22,6 +22,7 @@ struct Lanes {
   const Contact* contacts;
   const std::uint32_t* contact_index;
   const Real* previous_impulse;
+  const Real* previous_friction;
   const Real* inverse_mass;
   const Real* acceleration;
   std::ptrdiff_t acceleration_stride;
@@ -32,13 +33,14 @@ struct Lanes {
 };
 
 // What the lanes add up over the batches, kept in registers: the stats as lane-wise maxima (the
-// order does not matter: std::max skips a NaN either way and all start from +0) and the written
-// particles' count.
+// order does not matter: std::max skips a NaN either way and all start from +0), the written
+// particles' count and whether an active contact had friction.
 struct Running {
   Real4 max_closing;
   Real4 max_penetration;
   Mask4 corrected;
   std::size_t touched_count;
+  bool rubbed;
 };
 
 // std::max(acc, value) lane by lane.
@@ -88,6 +90,7 @@ inline __attribute__((always_inline)) void solveLanes(const Lanes& lanes, LaneCo
 inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const std::size_t e,
                                                      Real* __restrict x, Real* __restrict v,
                                                      Real* __restrict next_warm_normal,
+                                                     Real* __restrict next_warm_friction,
                                                      std::uint32_t* __restrict touched_out,
                                                      Running& running) {
   std::uint32_t contact[4];
@@ -107,6 +110,12 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
   lane.restitution =
       Real4{c[0]->restitution, c[1]->restitution, c[2]->restitution, c[3]->restitution};
   lane.previous = simd::load(lanes.previous_impulse + e);
+  lane.friction = Real4{c[0]->friction, c[1]->friction, c[2]->friction, c[3]->friction};
+  const Mask4 rubs = lane.friction > zero;
+  const bool any_rubs = anySet(rubs);
+  if (any_rubs) {
+    transposeIn(lanes.previous_friction + 3 * e, lane.previous_friction.c);
+  }
   // w_sum <= 0: never active, never corrected.
   lane.live = ~(lane.wa <= zero);
   lane.least_depth = broadcast(response::leastDepth(lanes.slop, -response::kInfinity));
@@ -135,7 +144,11 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
                          lanes.acceleration[stride * static_cast<std::ptrdiff_t>(particle[3]) + k]};
     }
   }
-  solveLanes<false>(lanes, lane, running);
+  if (any_rubs) {
+    solveLanes<true>(lanes, lane, running);
+  } else {
+    solveLanes<false>(lanes, lane, running);
+  }
   const Real4(&velocity)[3] = lane.va.c;
   const Real4(&solved)[3] = lane.xa.c;
   const Real4 total = lane.total;
@@ -158,27 +171,34 @@ inline __attribute__((always_inline)) void solveFour(const Lanes& lanes, const s
     touched_out[running.touched_count] = static_cast<std::uint32_t>(particle[l]);
     running.touched_count += static_cast<std::size_t>(touched[l] & 1);
   }
+  if (!any_rubs) return;
+  // As the scalar instance keeps them: only a rubbing contact's that pushed (an inactive one
+  // keeps no impulse).
+  for (int l = 0; l < 4; ++l) {
+    if (!rubs[l] || !active[l]) continue;
+    running.rubbed = true;
+    if (total[l] == 0.0) continue;
+    for (int k = 0; k < 3; ++k) {
+      next_warm_friction[3 * contact[l] + k] = lane.friction_total[k][l];
+    }
+  }
 }
 
 MAS_SIMD_CLONES void dispatch(const IsolatedBatchInputs& in, Real* x, Real* v,
                               IsolatedBatchOutputs& out) {
-  const Lanes lanes{in.contacts,
-                    in.contact_index,
-                    in.previous_impulse,
-                    in.inverse_mass,
-                    in.acceleration,
-                    in.acceleration_stride,
-                    in.h,
-                    in.slop,
-                    in.follow_scale,
-                    in.inverse_follow_scale};
-  Running running{Real4{}, Real4{}, Mask4{}, 0};  // +0 maxima, nothing corrected or written
+  const Lanes lanes{in.contacts,     in.contact_index, in.previous_impulse,    in.previous_friction,
+                    in.inverse_mass, in.acceleration,  in.acceleration_stride, in.h,
+                    in.slop,         in.follow_scale,  in.inverse_follow_scale};
+  // +0 maxima, nothing corrected, written or rubbed
+  Running running{Real4{}, Real4{}, Mask4{}, 0, false};
   Real* const next_warm_normal = out.next_warm_normal;
+  Real* const next_warm_friction = out.next_warm_friction;
   std::uint32_t* const touched = out.touched + out.touched_count;
   for (std::size_t e = 0; e + 4 <= in.count; e += 4) {
-    solveFour(lanes, e, x, v, next_warm_normal, touched, running);
+    solveFour(lanes, e, x, v, next_warm_normal, next_warm_friction, touched, running);
   }
   out.touched_count += running.touched_count;
+  out.rubbed = out.rubbed || running.rubbed;
   for (int l = 0; l < 4; ++l) {
     out.max_closing = std::max(out.max_closing, running.max_closing[l]);
     out.max_penetration = std::max(out.max_penetration, running.max_penetration[l]);
@@ -290,9 +310,11 @@ inline __attribute__((always_inline)) bool solveColliderGroup(
 
 MAS_SIMD_CLONES void groupDispatch(const ColliderGroupInputs& in, Real* x, Real* v,
                                    ColliderGroupOutputs& out) {
-  const Lanes lanes{nullptr, nullptr, nullptr, in.inverse_mass, in.acceleration,
-                    3,       in.h,    in.slop, in.follow_scale, in.inverse_follow_scale};
-  Running running{Real4{}, Real4{}, Mask4{}, 0};  // +0 maxima, nothing corrected or written
+  const Lanes lanes{
+      nullptr, nullptr, nullptr, nullptr,         in.inverse_mass,        in.acceleration,
+      3,       in.h,    in.slop, in.follow_scale, in.inverse_follow_scale};
+  // +0 maxima, nothing corrected or written (a group reports its friction in out.rubbed)
+  Running running{Real4{}, Real4{}, Mask4{}, 0, false};
   std::size_t i = in.begin;
   for (; i + 4 <= in.end; i += 4) {
     if (!solveColliderGroup(in, lanes, i, x, v, out, running)) break;

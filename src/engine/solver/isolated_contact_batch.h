@@ -16,9 +16,10 @@ namespace engine {
 
 struct IsolatedBatchInputs {
   const Contact* contacts = nullptr;
-  const std::uint32_t* contact_index = nullptr;  // per entry: its contact (no b, no friction)
+  const std::uint32_t* contact_index = nullptr;  // per entry: its contact (no b)
   const Real* previous_impulse = nullptr;        // per entry: its warm start (0 when none)
-  std::size_t count = 0;                         // entries, a multiple of 4
+  const Real* previous_friction = nullptr;  // per entry, xyz at 3e: its friction's (zero when none)
+  std::size_t count = 0;                    // entries, a multiple of 4
   const Real* inverse_mass = nullptr;
   const Real* acceleration = nullptr;  // xyz of particle i at i * acceleration_stride
   std::ptrdiff_t acceleration_stride = 3;
@@ -30,6 +31,10 @@ struct IsolatedBatchInputs {
 
 struct IsolatedBatchOutputs {
   Real* next_warm_normal = nullptr;  // by contact index: the impulse kept for the next substep
+  // By contact index, xyz at 3k: the friction impulse kept, written for a contact with friction
+  // that pushed (may be null when no entry has friction).
+  Real* next_warm_friction = nullptr;
+  bool rubbed = false;               // an active contact had friction
   std::uint32_t* touched = nullptr;  // the particles written, in entry order (room for count)
   std::size_t touched_count = 0;
   // Running over all calls, as ContactResolver keeps them for its isolated contacts.

@@ -4,7 +4,9 @@
 // different states share one world (some in the lanes, the rest in the scalar tail) and each must
 // move exactly as in a world of its own, where its contact is the only one and goes the scalar way.
 // On a plane without and with friction (the planes are tested in the lanes), and on a large rough
-// sphere (tested per particle, solved in the lanes).
+// sphere (tested per particle, solved in the lanes); and the same on the general contact path (a
+// contact limit set: contacts are made one by one, then the isolated ones gathered four at a time
+// by solveIsolatedBatch, with and without friction).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -43,13 +45,20 @@ const std::vector<Ball>& balls() {
 }
 
 enum class Ground { kPlane, kRoughPlane, kRoughSphere };
+enum class Path { kColliderGroups, kGeneral };
 
-World ballsWorld(const Integrator integrator, const std::vector<Ball>& list, const Ground kind) {
+World ballsWorld(const Integrator integrator, const std::vector<Ball>& list, const Ground kind,
+                 const Path path) {
   WorldConfig config;
   config.dt = 1.0 / 60.0;
   config.integrator = integrator;
   config.gravity = Vec3(0.0, -9.81, 0.0);
   World world(config);
+  if (path == Path::kGeneral) {
+    CollisionSettings settings = world.collisionSettings();
+    settings.max_contacts = 1000;
+    EXPECT_TRUE(world.setCollisionSettings(settings).isOk());
+  }
   // Tilted, so every component of the normal takes part in the arithmetic.
   const Vec3 normal = Vec3(0.1, 1.0, 0.05).normalized();
   const Material material{0.4, kind == Ground::kPlane ? 0.0 : 0.5};
@@ -91,10 +100,10 @@ bool sameBits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.dat
 // Steps the shared world and one world per ball side by side: same positions and velocities to
 // the bit, same contact count and stats.
 void expectEveryBallAsAlone(const Integrator integrator, const std::vector<Ball>& list,
-                            const Ground kind) {
-  World together = ballsWorld(integrator, list, kind);
+                            const Ground kind, const Path path = Path::kColliderGroups) {
+  World together = ballsWorld(integrator, list, kind, path);
   std::vector<World> alone;
-  for (const Ball& ball : list) alone.push_back(ballsWorld(integrator, {ball}, kind));
+  for (const Ball& ball : list) alone.push_back(ballsWorld(integrator, {ball}, kind, path));
   int steps_with_a_batch = 0;
   int corrected_steps = 0;
   for (int s = 0; s < 240; ++s) {
@@ -148,6 +157,25 @@ TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnARoughPlane) {
 
 TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnARoughSphere) {
   expectEveryBallAsAlone(GetParam(), balls(), Ground::kRoughSphere);
+}
+
+TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnTheGeneralPath) {
+  expectEveryBallAsAlone(GetParam(), balls(), Ground::kPlane, Path::kGeneral);
+}
+
+TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnARoughPlaneOnTheGeneralPath) {
+  expectEveryBallAsAlone(GetParam(), balls(), Ground::kRoughPlane, Path::kGeneral);
+}
+
+TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnARoughSphereOnTheGeneralPath) {
+  expectEveryBallAsAlone(GetParam(), balls(), Ground::kRoughSphere, Path::kGeneral);
+}
+
+// Reversed on the rough plane: the friction contacts that were in the scalar tail go in the lanes.
+TEST_P(IsolatedContactBatch, EveryBallMovesAsAloneOnARoughPlaneOnTheGeneralPathInTheOtherOrder) {
+  std::vector<Ball> reversed = balls();
+  std::reverse(reversed.begin(), reversed.end());
+  expectEveryBallAsAlone(GetParam(), reversed, Ground::kRoughPlane, Path::kGeneral);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, IsolatedContactBatch, everyIntegrator(),
