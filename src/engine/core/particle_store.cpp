@@ -9,13 +9,13 @@ namespace {
 
 bool finite(const Vec3& v) { return v.allFinite(); }
 
-void pushVec3(std::vector<Real>& buffer, const Vec3& v) {
+void pushVec3(ParticleBuffer& buffer, const Vec3& v) {
   buffer.push_back(v.x());
   buffer.push_back(v.y());
   buffer.push_back(v.z());
 }
 
-void copyVec3(std::vector<Real>& buffer, std::size_t from, std::size_t to) {
+void copyVec3(ParticleBuffer& buffer, std::size_t from, std::size_t to) {
   for (std::size_t k = 0; k < 3; ++k) buffer[3 * to + k] = buffer[3 * from + k];
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mass_aggregate_sim/engine/core/cache_line_allocator.h"
 #include "mass_aggregate_sim/engine/core/dense_slots.h"
 #include "mass_aggregate_sim/engine/core/particle_id.h"
 #include "mass_aggregate_sim/engine/core/status.h"
@@ -28,6 +29,9 @@ struct ParticleSpec {
 // Checks a spec without adding it: finite numbers, inverse mass >= 0, damping in [0, 1], radius >=
 // 0.
 Status validateSpec(const ParticleSpec& spec);
+
+// One attribute of every particle, on a cache line (see CacheLineAllocator).
+using ParticleBuffer = std::vector<Real, CacheLineAllocator<Real>>;
 
 // Particles as a structure of arrays, densely packed so each attribute is one contiguous Eigen
 // array: column i of every array is the same particle. Removal moves the last particle into the
@@ -93,12 +97,12 @@ class ParticleStore {
   Real mass(std::size_t dense) const;
 
  private:
-  Vec3Map vec3(std::vector<Real>& buffer) { return Vec3Map(buffer.data(), 3, size()); }
-  ConstVec3Map vec3(const std::vector<Real>& buffer) const {
+  Vec3Map vec3(ParticleBuffer& buffer) { return Vec3Map(buffer.data(), 3, size()); }
+  ConstVec3Map vec3(const ParticleBuffer& buffer) const {
     return ConstVec3Map(buffer.data(), 3, size());
   }
-  ScalarMap scalar(std::vector<Real>& buffer) { return ScalarMap(buffer.data(), size()); }
-  ConstScalarMap scalar(const std::vector<Real>& buffer) const {
+  ScalarMap scalar(ParticleBuffer& buffer) { return ScalarMap(buffer.data(), size()); }
+  ConstScalarMap scalar(const ParticleBuffer& buffer) const {
     return ConstScalarMap(buffer.data(), size());
   }
   void moveDense(std::size_t from, std::size_t to);
@@ -106,17 +110,17 @@ class ParticleStore {
 
   DenseSlots<ParticleId> slots_;
   // Growable buffers (amortised O(1) add); Eigen maps give the arrays their shape.
-  std::vector<Real> position_;
-  std::vector<Real> velocity_;
-  std::vector<Real> force_;
-  std::vector<Real> acceleration_;
-  std::vector<Real> previous_position_;
-  std::vector<Real> previous_external_;
-  std::vector<Real> history_seeded_;
-  std::vector<Real> inverse_mass_;
-  std::vector<Real> mobility_;
-  std::vector<Real> damping_;
-  std::vector<Real> radius_;
+  ParticleBuffer position_;
+  ParticleBuffer velocity_;
+  ParticleBuffer force_;
+  ParticleBuffer acceleration_;
+  ParticleBuffer previous_position_;
+  ParticleBuffer previous_external_;
+  ParticleBuffer history_seeded_;
+  ParticleBuffer inverse_mass_;
+  ParticleBuffer mobility_;
+  ParticleBuffer damping_;
+  ParticleBuffer radius_;
   std::vector<std::string> name_;
 
   std::uint64_t damping_version_ = 0;
