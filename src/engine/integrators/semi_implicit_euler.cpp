@@ -1,6 +1,7 @@
 // Semi-implicit (symplectic) Euler, the default: v' = (v + a h) d^h, x' = x + v' h. First order,
 // symplectic. Its update is one vectorised pass (semi_implicit_pass.cpp) that also sums the
-// energy guard's energies when nothing moves the particles after it.
+// energy guard's energies, or probes the state for the divergence check, when nothing moves the
+// particles after it.
 #include "engine/integrators/integrators.h"
 #include "engine/integrators/semi_implicit_pass.h"
 #include "engine/world/step_context.h"
@@ -35,11 +36,15 @@ void integrateSemiImplicitEuler(StepContext& ctx) {
   in.own_acceleration = particles.accelerations().data();
   in.damping_factor = ctx.caches.damping.decay.data();
   in.mass = ctx.caches.stability.mass.data();
-  EnergyAccumulator sums;
-  semiImplicitEulerPass(in, has_forces, a.data(), x.data(), v.data(),
-                        ctx.pass_sums_energies ? &sums : nullptr);
-  ctx.caches.pass_energies_valid = ctx.pass_sums_energies;
-  if (ctx.pass_sums_energies) ctx.caches.pass_energies = sums.sums(g);
+  const PassMeasure measure = ctx.pass_sums_energies   ? PassMeasure::kEnergies
+                              : ctx.pass_probes_finite ? PassMeasure::kFiniteProbe
+                                                       : PassMeasure::kNothing;
+  PassMeasurements measured;
+  semiImplicitEulerPass(in, has_forces, a.data(), x.data(), v.data(), measure, measured);
+  ctx.caches.pass_energies_valid = measure == PassMeasure::kEnergies;
+  if (ctx.caches.pass_energies_valid) ctx.caches.pass_energies = measured.energies.sums(g);
+  ctx.caches.pass_finite_valid = measure == PassMeasure::kFiniteProbe;
+  ctx.caches.pass_finite = measured.all_finite;
 }
 
 }  // namespace engine

@@ -2,20 +2,26 @@
 
 #include "engine/core/simd.h"
 #include "engine/forces/particle_acceleration.h"
+#include "engine/world/finite_check.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
+using simd::Real4;
+
 // Four particles (three Real4) per iteration, the rest one component at a time with the same
 // operations in the same order, so every particle gets the same bits either way.
-template <bool kHasForces, bool kEnergies>
+template <bool kHasForces, PassMeasure kMeasure>
 inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Real* __restrict a,
                                                 Real* __restrict x, Real* __restrict v,
-                                                EnergyAccumulator& energies) {
+                                                PassMeasurements& out) {
+  constexpr bool kEnergies = kMeasure == PassMeasure::kEnergies;
+  constexpr bool kProbe = kMeasure == PassMeasure::kFiniteProbe;
   using simd::load;
-  using simd::Real4;
   using simd::store;
+  Real4 probe = simd::broadcast(0.0);
+  Real probe_tail = 0.0;
   const Real* const g = in.gravity;
   const Real4 h = simd::broadcast(in.h);
   const Real4 gravity[3] = {simd::pattern0(g), simd::pattern1(g), simd::pattern2(g)};
@@ -41,7 +47,8 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
       store(v + k, velocity);
       const Real4 position = load(x + k) + velocity * h;
       store(x + k, position);
-      if constexpr (kEnergies) energies.addGroup(b, spread(mass, b), position, velocity);
+      if constexpr (kEnergies) out.energies.addGroup(b, spread(mass, b), position, velocity);
+      if constexpr (kProbe) probe += finiteProbeTerm(position, velocity);
     }
   }
   for (; i < in.count; ++i) {
@@ -54,27 +61,45 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
       const Real velocity = (v[k] + acceleration * in.h) * in.damping_factor[i];
       v[k] = velocity;
       x[k] += velocity * in.h;
+      if constexpr (kProbe) probe_tail += finiteProbeTerm(x[k], velocity);
     }
-    if constexpr (kEnergies) energies.addParticle(in.mass[i], x + 3 * i, v + 3 * i);
+    if constexpr (kEnergies) out.energies.addParticle(in.mass[i], x + 3 * i, v + 3 * i);
+  }
+  if constexpr (kProbe) {
+    out.all_finite = ((probe[0] + probe[1]) + (probe[2] + probe[3])) + probe_tail == 0.0;
+  }
+}
+
+template <bool kHasForces>
+inline __attribute__((always_inline)) void measuredPass(const SemiImplicitInputs& in, Real* a,
+                                                        Real* x, Real* v, const PassMeasure measure,
+                                                        PassMeasurements& out) {
+  switch (measure) {
+    case PassMeasure::kNothing:
+      return pass<kHasForces, PassMeasure::kNothing>(in, a, x, v, out);
+    case PassMeasure::kEnergies:
+      return pass<kHasForces, PassMeasure::kEnergies>(in, a, x, v, out);
+    case PassMeasure::kFiniteProbe:
+      return pass<kHasForces, PassMeasure::kFiniteProbe>(in, a, x, v, out);
   }
 }
 
 MAS_SIMD_CLONES void dispatch(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
-                              Real* v, EnergyAccumulator* energies) {
-  EnergyAccumulator sums;  // a local, so the sums stay in registers
+                              Real* v, const PassMeasure measure, PassMeasurements& out) {
+  PassMeasurements local;  // so the sums stay in registers
   if (has_forces) {
-    energies ? pass<true, true>(in, a, x, v, sums) : pass<true, false>(in, a, x, v, sums);
+    measuredPass<true>(in, a, x, v, measure, local);
   } else {
-    energies ? pass<false, true>(in, a, x, v, sums) : pass<false, false>(in, a, x, v, sums);
+    measuredPass<false>(in, a, x, v, measure, local);
   }
-  if (energies) *energies = sums;
+  out = local;
 }
 
 }  // namespace
 
 void semiImplicitEulerPass(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
-                           Real* v, EnergyAccumulator* energies) {
-  dispatch(in, has_forces, a, x, v, energies);
+                           Real* v, const PassMeasure measure, PassMeasurements& out) {
+  dispatch(in, has_forces, a, x, v, measure, out);
 }
 
 }  // namespace engine

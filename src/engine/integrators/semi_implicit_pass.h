@@ -21,11 +21,23 @@ struct SemiImplicitInputs {
   const Real* mass = nullptr;              // read only with `energies`
 };
 
+// What the pass measures of the state it writes, for the step's divergence check when nothing
+// moves the particles after it.
+enum class PassMeasure {
+  kNothing,
+  kEnergies,     // the energy guard's sums (which are finite only when the state is)
+  kFiniteProbe,  // whether every new x and v is finite (allFinite(), made as they are written)
+};
+
+struct PassMeasurements {
+  EnergyAccumulator energies;  // kEnergies: the new state added (accumulateParticleEnergies' order)
+  bool all_finite = true;      // kFiniteProbe
+};
+
 // a = F/m + mobility (g + a_own) (F read from `a` when has_forces, else 0), stored in `a`;
-// v' = (v + a h) d^h; x' = x + v' h. With `energies`, adds the new state to it (the order of
-// accumulateParticleEnergies).
+// v' = (v + a h) d^h; x' = x + v' h.
 void semiImplicitEulerPass(const SemiImplicitInputs& in, bool has_forces, Real* a, Real* x, Real* v,
-                           EnergyAccumulator* energies);
+                           PassMeasure measure, PassMeasurements& out);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

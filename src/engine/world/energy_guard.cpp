@@ -60,7 +60,10 @@ bool energyGuardApplies(const StepContext& ctx) {
 void detectNonFinite(StepContext& ctx) {
   const auto x = ctx.particles.positions();
   const auto v = ctx.particles.velocities();
-  if (allFinite(x.data(), v.data(), 3 * ctx.particles.size())) return;
+  const bool finite = ctx.caches.pass_finite_valid
+                          ? ctx.caches.pass_finite
+                          : allFinite(x.data(), v.data(), 3 * ctx.particles.size());
+  if (finite) return;
   for (std::size_t i = 0; i < ctx.particles.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {

@@ -6,16 +6,15 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-// 0 * value is 0 for every finite value and NaN for Inf or NaN, and a NaN stays in a sum.
 // Inlined into the cloned function below: Clang refuses calls that pass or return 256-bit vectors
 // written directly in the baseline version of a function.
 inline __attribute__((always_inline)) bool sumsToZero(const Real* a, const Real* b,
                                                       const std::size_t count) {
   simd::Real4 sum = simd::broadcast(0.0);
   std::size_t k = 0;
-  for (; k + 4 <= count; k += 4) sum += simd::load(a + k) * 0.0 + simd::load(b + k) * 0.0;
+  for (; k + 4 <= count; k += 4) sum += finiteProbeTerm(simd::load(a + k), simd::load(b + k));
   Real tail = 0.0;
-  for (; k < count; ++k) tail += a[k] * 0.0 + b[k] * 0.0;
+  for (; k < count; ++k) tail += finiteProbeTerm(a[k], b[k]);
   return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + tail == 0.0;
 }
 

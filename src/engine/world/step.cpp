@@ -87,11 +87,13 @@ StepContext World::beginStep() {
   ctx.body_forces_reach_particles = reach;
   ctx.contacts_active = contactsActive();
   ctx.guard_energy = energyGuardApplies(ctx);
-  // The guard reads the state the step ends in: the semi-implicit Euler pass sums it unless
-  // contacts or stiff springs move particles afterwards.
+  // The guard and the divergence check read the state the step ends in: the semi-implicit Euler
+  // pass sums or probes it unless contacts or stiff springs move particles afterwards.
+  const bool pass_state_is_final = !ctx.contacts_active && generators_.of<StiffSpring>().empty();
   ctx.pass_sums_energies =
-      ctx.guard_energy && !ctx.contacts_active && generators_.of<StiffSpring>().empty() &&
+      ctx.guard_energy && pass_state_is_final &&
       caches.stability.mass.size() == static_cast<Eigen::Index>(particles_.size());
+  ctx.pass_probes_finite = !ctx.guard_energy && pass_state_is_final;
   const auto n = static_cast<Eigen::Index>(particles_.size());
   if (integration_->acceleration.cols() != n) {
     integration_->acceleration.setZero(3, n);
@@ -100,6 +102,7 @@ StepContext World::beginStep() {
   refreshDampingFactors(particles_, config_.integrator, ctx.h, caches.damping);
   dropped_this_step_ = 0;
   caches.pass_energies_valid = false;
+  caches.pass_finite_valid = false;
   if (!bodies_.empty()) {
     ctx.bodies = &bodies_;
     ctx.joints = &joints_;
@@ -109,6 +112,7 @@ StepContext World::beginStep() {
     ctx.colliders_version = colliders_version_;
     // Body contacts move particles after the integrator: the guard's sums come after them.
     ctx.pass_sums_energies = false;
+    ctx.pass_probes_finite = false;
   }
   beginBodyStep(ctx);
   return ctx;

@@ -64,6 +64,10 @@ struct StepCaches {
   // The energy sums of the last semi-implicit Euler pass, when it made them this step.
   ParticleEnergies pass_energies;
   bool pass_energies_valid = false;
+  // Whether the state the last semi-implicit Euler pass wrote is finite, when it probed it this
+  // step (the step ends in that state and the energy guard does not judge it).
+  bool pass_finite = true;
+  bool pass_finite_valid = false;
   Vec3Array scratch_x;
   Vec3Array scratch_v;
   Vec3Array stage_a[3];

@@ -76,6 +76,9 @@ class StepContext {
   bool guard_energy = false;
   // The semi-implicit Euler pass sums the guard's energies (nothing moves the particles after it).
   bool pass_sums_energies = false;
+  // Or, when the guard does not judge the step, probes the state it writes for the divergence
+  // check (allFinite()) instead of a pass of its own after the step.
+  bool pass_probes_finite = false;
 
   // The force stage: accelerations at (x, v) for this substep (external forces unless told).
   void accelerations(const Eigen::Ref<const Vec3Array>& x, const Eigen::Ref<const Vec3Array>& v,

@@ -301,6 +301,42 @@ TEST(DivergencePolicy, NonFiniteValueIsReportedWithItsParticle) {
   EXPECT_EQ(world.lastDivergence()->step, 1u);
 }
 
+// With gravity alone the energy guard does not judge a step, and the semi-implicit Euler pass
+// probes the state it writes instead of a pass after the step: an overflow is still reported in
+// the step that made it, naming its particle, whether the particle is in one of the pass's groups
+// of four or past the last one, and with one substep or several.
+TEST(DivergencePolicy, AGravityOnlyOverflowIsReportedInTheStepThatMadeIt) {
+  for (const Integrator integrator : allIntegrators()) {
+    for (const int substeps : {1, 3}) {
+      for (const std::size_t wild_index : {std::size_t{1}, std::size_t{4}}) {
+        WorldConfig config;
+        config.integrator = integrator;
+        config.substeps = substeps;
+        World world(config);
+        ParticleId wild;
+        for (std::size_t i = 0; i < 5; ++i) {
+          ParticleSpec spec;
+          spec.position = Vec3(0.0, static_cast<Real>(i), 0.0);
+          if (i == wild_index) {
+            // x + v h passes the largest double within the first step's first substep.
+            spec.position.x() = 1.79e308;
+            spec.velocity.x() = 1.7e308;
+          }
+          const ParticleId id = world.addParticle(spec).value();
+          if (i == wild_index) wild = id;
+        }
+        world.step();
+        const std::string label = std::to_string(static_cast<int>(integrator)) + " x " +
+                                  std::to_string(substeps) + ", particle " +
+                                  std::to_string(wild_index);
+        ASSERT_EQ(world.divergenceCount(), 1u) << label;
+        EXPECT_EQ(world.lastDivergence()->particle, wild) << label;
+        EXPECT_EQ(world.lastDivergence()->step, 1u) << label;
+      }
+    }
+  }
+}
+
 TEST(Extremes, MassRatioOfAMillionAcrossASpring) {
   WorldConfig config;
   config.dt = 1.0 / 600.0;
