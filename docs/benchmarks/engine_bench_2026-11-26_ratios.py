@@ -60,6 +60,9 @@ def parse(path):
             # one above (the bandwidth floor under free fall): only its time per particle-step,
             # the one counter with a time unit, is read.
             row["particle_step_time"] = next(number(t) for t in values if t.endswith("s"))
+        # A scene without particle_step_time (the rigid rain): its time per step, ns.
+        if "particle_step_time" not in row:
+            row["particle_step_time"] = number(tokens[1] + tokens[2])
         times[name][binary][rnd] = row["particle_step_time"]
         counters[name][binary][rnd] = row
     return times, counters
@@ -69,7 +72,7 @@ def main():
     times, counters = parse(sys.argv[1])
     if len(sys.argv) > 2:
         BINARIES[:] = sys.argv[2].split(",")
-    print("particle_step_time, ns: per round (r1 r2 ...), median; ratios per round, median [min, max]")
+    print("particle_step_time (else the time per step), ns: per round (r1 r2 ...), median; ratios per round, median [min, max]")
     for name in times:
         print(f"\n{name}")
         for b in BINARIES:
@@ -78,10 +81,10 @@ def main():
             med = statistics.median(rounds.values()) if rounds else float("nan")
             print(f"  {b:8s} {series}   median {med:.4g}")
         for other in BINARIES[1:]:
-            head, base = times[name].get("head", {}), times[name].get(other, {})
+            head, base = times[name].get(BINARIES[0], {}), times[name].get(other, {})
             ratios = [head[r] / base[r] for r in sorted(head) if r in base]
             if ratios:
-                print(f"  head/{other}: " + " ".join(f"{x:.3f}" for x in ratios)
+                print(f"  {BINARIES[0]}/{other}: " + " ".join(f"{x:.3f}" for x in ratios)
                       + f"   median {statistics.median(ratios):.3f} [{min(ratios):.3f}, {max(ratios):.3f}]")
         for b in BINARIES:
             rows = counters[name].get(b, {})
