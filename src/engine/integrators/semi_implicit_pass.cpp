@@ -66,7 +66,7 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
     if constexpr (kEnergies) out.energies.addParticle(in.mass[i], x + 3 * i, v + 3 * i);
   }
   if constexpr (kProbe) {
-    out.all_finite = ((probe[0] + probe[1]) + (probe[2] + probe[3])) + probe_tail == 0.0;
+    out.all_finite = probedFinite(probe, probe_tail);
   }
 }
 

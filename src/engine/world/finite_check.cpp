@@ -15,7 +15,7 @@ inline __attribute__((always_inline)) bool sumsToZero(const Real* a, const Real*
   for (; k + 4 <= count; k += 4) sum += finiteProbeTerm(simd::load(a + k), simd::load(b + k));
   Real tail = 0.0;
   for (; k < count; ++k) tail += finiteProbeTerm(a[k], b[k]);
-  return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + tail == 0.0;
+  return probedFinite(sum, tail);
 }
 
 MAS_SIMD_CLONES bool zeroProbe(const Real* a, const Real* b, const std::size_t count) {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "engine/core/simd.h"
 #include "mass_aggregate_sim/engine/core/types.h"
 
 namespace mass_aggregate_sim {
@@ -15,6 +16,12 @@ namespace engine {
 template <typename T>
 inline T finiteProbeTerm(const T a, const T b) {
   return a * 0.0 + b * 0.0;
+}
+
+// The probe's verdict from its four lanes and its scalar tail: every value was finite. Inlined
+// into its callers' cloned functions (a 256-bit argument cannot cross into the baseline version).
+inline __attribute__((always_inline)) bool probedFinite(const simd::Real4 lanes, const Real tail) {
+  return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + tail == 0.0;
 }
 
 // True when a[0..count) and b[0..count) hold no Inf and no NaN.
