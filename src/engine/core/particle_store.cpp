@@ -15,6 +15,14 @@ void pushVec3(ParticleBuffer& buffer, const Vec3& v) {
   buffer.push_back(v.z());
 }
 
+// Not all bits zero: a component -0 counts, since g + (-0) is not g's bits when g is +0.
+bool anyBitSet(const Real* xyz) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (xyz[k] != 0.0 || std::signbit(xyz[k])) return true;
+  }
+  return false;
+}
+
 void copyVec3(ParticleBuffer& buffer, std::size_t from, std::size_t to) {
   for (std::size_t k = 0; k < 3; ++k) buffer[3 * to + k] = buffer[3 * from + k];
 }
@@ -44,6 +52,7 @@ ParticleId ParticleStore::add(const ParticleSpec& spec) {
   pushVec3(velocity_, movable ? spec.velocity : Vec3::Zero());
   pushVec3(force_, Vec3::Zero());
   pushVec3(acceleration_, spec.acceleration);
+  if (anyBitSet(spec.acceleration.data())) ++own_acceleration_count_;
   pushVec3(previous_position_, spec.position);
   pushVec3(previous_external_, Vec3::Zero());
   history_seeded_.push_back(0.0);
@@ -58,7 +67,9 @@ ParticleId ParticleStore::add(const ParticleSpec& spec) {
 }
 
 Status ParticleStore::remove(const ParticleId id) {
-  if (!find(id)) return Status::error(describeInvalid(id));
+  const auto dense = find(id);
+  if (!dense) return Status::error(describeInvalid(id));
+  if (hasOwnAcceleration(*dense)) --own_acceleration_count_;
   const auto move = slots_.remove(id);
   if (move.from != move.to) moveDense(move.from, move.to);
   popDense();
@@ -75,6 +86,7 @@ void ParticleStore::clear() {
     buffer->clear();
   }
   name_.clear();
+  own_acceleration_count_ = 0;
   ++damping_version_;
   ++layout_version_;
 }
@@ -118,6 +130,10 @@ Real ParticleStore::mass(const std::size_t dense) const {
 void ParticleStore::setDamping(const std::size_t dense, const Real damping) {
   damping_[dense] = damping;
   ++damping_version_;
+}
+
+bool ParticleStore::hasOwnAcceleration(const std::size_t dense) const {
+  return anyBitSet(acceleration_.data() + 3 * dense);
 }
 
 void ParticleStore::moveDense(const std::size_t from, const std::size_t to) {

@@ -18,8 +18,9 @@ struct IntegratorState {
   // ended (at its predicted velocity), reused as the next one's start while valid.
   bool acceleration_valid = false;
   Vec3Array internal_acceleration;
-  // Each particle's acceleration over the last substep (World::lastAccelerations); the contact
-  // phase measures what the forces built with it.
+  // Each particle's acceleration over the substep (the average over RK4's stages): the contact
+  // phase measures what the forces built with it. The semi-implicit Euler pass writes it only
+  // when the contact phase runs (StepContext::contacts_active); nothing else reads it.
   Vec3Array acceleration;
 };
 

@@ -33,14 +33,17 @@ void integrateSemiImplicitEuler(StepContext& ctx) {
   in.gravity = g;
   in.inverse_mass = particles.inverseMasses().data();
   in.mobility = particles.mobility().data();
-  in.own_acceleration = particles.accelerations().data();
+  in.own_acceleration = particles.anyOwnAcceleration() ? particles.accelerations().data() : nullptr;
   in.damping_factor = ctx.caches.damping.decay.data();
   in.mass = ctx.caches.stability.mass.data();
   const PassMeasure measure = ctx.pass_sums_energies   ? PassMeasure::kEnergies
                               : ctx.pass_probes_finite ? PassMeasure::kFiniteProbe
                                                        : PassMeasure::kNothing;
   PassMeasurements measured;
-  semiImplicitEulerPass(in, has_forces, a.data(), x.data(), v.data(), measure, measured);
+  // The contact phase is the one stage after the pass that reads the substep's accelerations.
+  const bool keep_acceleration = ctx.contacts_active;
+  semiImplicitEulerPass(in, has_forces, keep_acceleration, a.data(), x.data(), v.data(), measure,
+                        measured);
   ctx.caches.pass_energies_valid = measure == PassMeasure::kEnergies;
   if (ctx.caches.pass_energies_valid) ctx.caches.pass_energies = measured.energies.sums(g);
   ctx.caches.pass_finite_valid = measure == PassMeasure::kFiniteProbe;

@@ -11,8 +11,9 @@ namespace {
 using simd::Real4;
 
 // Four particles (three Real4) per iteration, the rest one component at a time with the same
-// operations in the same order, so every particle gets the same bits either way.
-template <bool kHasForces, PassMeasure kMeasure>
+// operations in the same order, so every particle gets the same bits either way. Without kOwn
+// and kKeep a particle costs the bytes of x, v, mobility and d^h alone (the floor's).
+template <bool kHasForces, bool kOwn, bool kKeep, PassMeasure kMeasure>
 inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Real* __restrict a,
                                                 Real* __restrict x, Real* __restrict v,
                                                 PassMeasurements& out) {
@@ -25,6 +26,7 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
   const Real* const g = in.gravity;
   const Real4 h = simd::broadcast(in.h);
   const Real4 gravity[3] = {simd::pattern0(g), simd::pattern1(g), simd::pattern2(g)};
+  const Real4 no_own = simd::broadcast(0.0);
   const auto spread = [](const Real4 s, const int b) {
     return b == 0 ? simd::spread0(s) : b == 1 ? simd::spread1(s) : simd::spread2(s);
   };
@@ -36,12 +38,12 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
     const Real4 mass = kEnergies ? load(in.mass + i) : Real4{};
     for (int b = 0; b < 3; ++b) {
       const std::size_t k = 3 * i + 4 * static_cast<std::size_t>(b);
-      const Real4 uniform =
-          uniformAcceleration(spread(mobility, b), gravity[b], load(in.own_acceleration + k));
+      const Real4 own = kOwn ? load(in.own_acceleration + k) : no_own;
+      const Real4 uniform = uniformAcceleration(spread(mobility, b), gravity[b], own);
       const Real4 acceleration =
           kHasForces ? particleAcceleration(load(a + k), spread(inverse_mass, b), uniform)
                      : uniform;
-      store(a + k, acceleration);
+      if constexpr (kKeep) store(a + k, acceleration);
       // v' = (v + a h) d^h,  x' = x + v' h
       const Real4 velocity = (load(v + k) + acceleration * h) * spread(damping, b);
       store(v + k, velocity);
@@ -54,10 +56,11 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
   for (; i < in.count; ++i) {
     for (std::size_t c = 0; c < 3; ++c) {
       const std::size_t k = 3 * i + c;
-      const Real uniform = uniformAcceleration(in.mobility[i], g[c], in.own_acceleration[k]);
+      const Real own = kOwn ? in.own_acceleration[k] : 0.0;
+      const Real uniform = uniformAcceleration(in.mobility[i], g[c], own);
       const Real acceleration =
           kHasForces ? particleAcceleration(a[k], in.inverse_mass[i], uniform) : uniform;
-      a[k] = acceleration;
+      if constexpr (kKeep) a[k] = acceleration;
       const Real velocity = (v[k] + acceleration * in.h) * in.damping_factor[i];
       v[k] = velocity;
       x[k] += velocity * in.h;
@@ -70,36 +73,62 @@ inline __attribute__((always_inline)) void pass(const SemiImplicitInputs& in, Re
   }
 }
 
-template <bool kHasForces>
+template <bool kHasForces, bool kOwn, bool kKeep>
 inline __attribute__((always_inline)) void measuredPass(const SemiImplicitInputs& in, Real* a,
                                                         Real* x, Real* v, const PassMeasure measure,
                                                         PassMeasurements& out) {
   switch (measure) {
     case PassMeasure::kNothing:
-      return pass<kHasForces, PassMeasure::kNothing>(in, a, x, v, out);
+      return pass<kHasForces, kOwn, kKeep, PassMeasure::kNothing>(in, a, x, v, out);
     case PassMeasure::kEnergies:
-      return pass<kHasForces, PassMeasure::kEnergies>(in, a, x, v, out);
+      return pass<kHasForces, kOwn, kKeep, PassMeasure::kEnergies>(in, a, x, v, out);
     case PassMeasure::kFiniteProbe:
-      return pass<kHasForces, PassMeasure::kFiniteProbe>(in, a, x, v, out);
+      return pass<kHasForces, kOwn, kKeep, PassMeasure::kFiniteProbe>(in, a, x, v, out);
   }
 }
 
-MAS_SIMD_CLONES void dispatch(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
-                              Real* v, const PassMeasure measure, PassMeasurements& out) {
+template <bool kHasForces, bool kOwn>
+inline __attribute__((always_inline)) void keptPass(const SemiImplicitInputs& in, const bool keep,
+                                                    Real* a, Real* x, Real* v,
+                                                    const PassMeasure measure,
+                                                    PassMeasurements& out) {
+  if (keep) {
+    measuredPass<kHasForces, kOwn, true>(in, a, x, v, measure, out);
+  } else {
+    measuredPass<kHasForces, kOwn, false>(in, a, x, v, measure, out);
+  }
+}
+
+template <bool kHasForces>
+inline __attribute__((always_inline)) void ownPass(const SemiImplicitInputs& in, const bool keep,
+                                                   Real* a, Real* x, Real* v,
+                                                   const PassMeasure measure,
+                                                   PassMeasurements& out) {
+  if (in.own_acceleration != nullptr) {
+    keptPass<kHasForces, true>(in, keep, a, x, v, measure, out);
+  } else {
+    keptPass<kHasForces, false>(in, keep, a, x, v, measure, out);
+  }
+}
+
+MAS_SIMD_CLONES void dispatch(const SemiImplicitInputs& in, const bool has_forces, const bool keep,
+                              Real* a, Real* x, Real* v, const PassMeasure measure,
+                              PassMeasurements& out) {
   PassMeasurements local;  // so the sums stay in registers
   if (has_forces) {
-    measuredPass<true>(in, a, x, v, measure, local);
+    ownPass<true>(in, keep, a, x, v, measure, local);
   } else {
-    measuredPass<false>(in, a, x, v, measure, local);
+    ownPass<false>(in, keep, a, x, v, measure, local);
   }
   out = local;
 }
 
 }  // namespace
 
-void semiImplicitEulerPass(const SemiImplicitInputs& in, const bool has_forces, Real* a, Real* x,
-                           Real* v, const PassMeasure measure, PassMeasurements& out) {
-  dispatch(in, has_forces, a, x, v, measure, out);
+void semiImplicitEulerPass(const SemiImplicitInputs& in, const bool has_forces,
+                           const bool keep_acceleration, Real* a, Real* x, Real* v,
+                           const PassMeasure measure, PassMeasurements& out) {
+  dispatch(in, has_forces, keep_acceleration, a, x, v, measure, out);
 }
 
 }  // namespace engine

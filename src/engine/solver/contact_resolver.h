@@ -29,10 +29,10 @@ enum class IsolatedContacts : std::uint8_t {
 //
 // Velocity pass, per contact: v_sep = (v_a - v_b).n; a closing contact (v_sep < 0) gets the
 // impulse j = (v_target - v_sep) / (w_a + w_b), shared by inverse mass w. The target is
-// -e v_impact, where v_impact is v_sep less what the forces (of lastAccelerations) built up along
-// n while the particles were already in contact during the substep. A contact whose closing speed,
-// less all the forces built over the substep, is below two more substeps of it is resting and
-// aims at touching (v_target = 0 when overlapping), which keeps resting contacts still without
+// -e v_impact, where v_impact is v_sep less what the forces (the substep's accelerations) built up
+// along n while the particles were already in contact during the substep. A contact whose closing
+// speed, less all the forces built over the substep, is below two more substeps of it is resting
+// and aims at touching (v_target = 0 when overlapping), which keeps resting contacts still without
 // bouncing. Friction then removes tangential velocity, bounded by mu j. Rods are bilateral
 // (target 0, either sign); cables pull only and reflect with their restitution. Every constraint
 // keeps its total normal and friction impulse and starts the next substep from it (warm

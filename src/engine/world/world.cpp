@@ -320,11 +320,6 @@ void World::clear() {
 
 // --- measurements ---
 
-ConstVec3Map World::lastAccelerations() const {
-  const Vec3Array& a = integration_->acceleration;
-  return ConstVec3Map(a.data(), 3, a.cols());
-}
-
 Real World::kineticEnergy() const {
   const auto v = particles_.velocities();
   const auto inverse_mass = particles_.inverseMasses();

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -122,6 +123,36 @@ TEST(ParticleSpecValidation, RefusesBadValues) {
   spec = ParticleSpec{};
   spec.velocity.y() = std::numeric_limits<Real>::infinity();
   EXPECT_FALSE(validateSpec(spec).isOk());
+}
+
+// The semi-implicit Euler pass reads own accelerations only when some particle has one: the
+// count must follow the particle that has it through removals that move it, and -0 counts.
+TEST(ParticleStore, OwnAccelerationsAreCountedThroughAddRemoveAndClear) {
+  ParticleStore store;
+  ParticleSpec plain;
+  ParticleSpec pushed;
+  pushed.acceleration = Vec3(0.0, 5.0, 0.0);
+  ParticleSpec negative_zero;
+  negative_zero.acceleration = Vec3(0.0, -0.0, 0.0);
+  const ParticleId first = store.add(plain);
+  EXPECT_FALSE(store.anyOwnAcceleration());
+  const ParticleId second = store.add(plain);
+  const ParticleId last = store.add(pushed);
+  EXPECT_TRUE(store.anyOwnAcceleration());
+  ASSERT_TRUE(store.remove(first).isOk());  // `last` moves into the hole
+  ASSERT_EQ(store.find(last), std::optional<std::size_t>(0));
+  EXPECT_TRUE(store.anyOwnAcceleration());
+  ASSERT_TRUE(store.remove(second).isOk());
+  EXPECT_TRUE(store.anyOwnAcceleration());
+  ASSERT_TRUE(store.remove(last).isOk());
+  EXPECT_FALSE(store.anyOwnAcceleration());
+  store.add(negative_zero);
+  EXPECT_TRUE(store.anyOwnAcceleration());
+  store.add(pushed);
+  store.clear();
+  EXPECT_FALSE(store.anyOwnAcceleration());
+  store.add(plain);
+  EXPECT_FALSE(store.anyOwnAcceleration());
 }
 
 }  // namespace

@@ -65,9 +65,11 @@ class ParticleStore {
   // External force accumulated for the next step (services, user code); cleared after each step.
   Vec3Map forces() { return vec3(force_); }
   ConstVec3Map forces() const { return vec3(force_); }
-  // Constant acceleration of each particle, on top of the world's gravity.
-  Vec3Map accelerations() { return vec3(acceleration_); }
+  // Constant acceleration of each particle, on top of the world's gravity (set when it is added).
   ConstVec3Map accelerations() const { return vec3(acceleration_); }
+  // Whether some particle's own acceleration is anything but (+0, +0, +0), so a pass can skip
+  // reading them: g + (+0) is g's own bits, -0 included.
+  bool anyOwnAcceleration() const { return own_acceleration_count_ > 0; }
   // Position Verlet's history: the position one substep ago, the external acceleration (F / m) of
   // that substep, and whether the two are seeded (1) or must be seeded from the particle's
   // position and velocity before the next substep (0: a new particle, or one whose velocity was
@@ -105,6 +107,7 @@ class ParticleStore {
   ConstScalarMap scalar(const ParticleBuffer& buffer) const {
     return ConstScalarMap(buffer.data(), size());
   }
+  bool hasOwnAcceleration(std::size_t dense) const;
   void moveDense(std::size_t from, std::size_t to);
   void popDense();
 
@@ -125,6 +128,7 @@ class ParticleStore {
 
   std::uint64_t damping_version_ = 0;
   std::uint64_t layout_version_ = 0;
+  std::size_t own_acceleration_count_ = 0;  // particles for which hasOwnAcceleration holds
 };
 
 }  // namespace engine

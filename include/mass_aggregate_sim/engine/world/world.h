@@ -236,9 +236,6 @@ class World {
   const std::optional<DivergenceEvent>& lastDivergence() const;
   std::uint64_t divergenceCount() const;
 
-  // Acceleration each particle had in the last substep (the average over RK4's stages).
-  ConstVec3Map lastAccelerations() const;
-
   // --- stability guard (stability.h, WorldConfig::auto_substep, divergence_policy) ---
   // The stiffest spring against the integrator's limit at the current dt and substeps; kept up to
   // date with the scene. !stable is the warning: it names the spring, its omega*h and stable dt.
