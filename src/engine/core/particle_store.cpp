@@ -15,7 +15,7 @@ void pushVec3(ParticleBuffer& buffer, const Vec3& v) {
   buffer.push_back(v.z());
 }
 
-// Not all bits zero: a component -0 counts, since g + (-0) is not g's bits when g is +0.
+// Not all bits zero: a component -0 counts, since g + (-0) and g + (+0) differ when g is -0.
 bool anyBitSet(const Real* xyz) {
   for (std::size_t k = 0; k < 3; ++k) {
     if (xyz[k] != 0.0 || std::signbit(xyz[k])) return true;

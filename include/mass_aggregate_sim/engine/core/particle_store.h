@@ -67,8 +67,8 @@ class ParticleStore {
   ConstVec3Map forces() const { return vec3(force_); }
   // Constant acceleration of each particle, on top of the world's gravity (set when it is added).
   ConstVec3Map accelerations() const { return vec3(acceleration_); }
-  // Whether some particle's own acceleration is anything but (+0, +0, +0), so a pass can skip
-  // reading them: g + (+0) is g's own bits, -0 included.
+  // Whether some particle's own acceleration is anything but (+0, +0, +0). When none is, a pass
+  // may add a constant +0 instead of reading them: the same operation on the same bits.
   bool anyOwnAcceleration() const { return own_acceleration_count_ > 0; }
   // Position Verlet's history: the position one substep ago, the external acceleration (F / m) of
   // that substep, and whether the two are seeded (1) or must be seeded from the particle's
