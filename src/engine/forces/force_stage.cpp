@@ -36,6 +36,8 @@ void ForceStage::accelerations(const ForceScene& scene, const Eigen::Ref<const V
   const auto inverse_mass = particles.inverseMasses();
   const auto mobility = particles.mobility();
   const auto own_acceleration = particles.accelerations();
+  // Without any, a constant +0 instead of reading them (as the semi-implicit Euler pass does).
+  const bool any_own = particles.anyOwnAcceleration();
   const Vec3 g = scene.gravity;
   const bool external = with_external && scene.external;
   const bool forces = !scene.generators.empty() || external;
@@ -49,7 +51,8 @@ void ForceStage::accelerations(const ForceScene& scene, const Eigen::Ref<const V
   }
   for (std::size_t i = 0; i < n; ++i) {
     for (Eigen::Index c = 0; c < 3; ++c) {
-      const Real uniform = uniformAcceleration(mobility[i], g[c], own_acceleration(c, i));
+      const Real own = any_own ? own_acceleration(c, i) : 0.0;
+      const Real uniform = uniformAcceleration(mobility[i], g[c], own);
       out(c, i) = forces ? particleAcceleration(out(c, i), inverse_mass[i], uniform) : uniform;
     }
   }

@@ -1,11 +1,13 @@
-// The semi-implicit Euler pass skips reading own accelerations when no particle has one and skips
-// storing the substep's accelerations when no contact phase reads them: both must leave every bit
-// of the state as reading and storing them does.
+// The semi-implicit Euler pass (and the force stage the other integrators ask) skips reading own
+// accelerations when no particle has one, and the pass skips storing the substep's accelerations
+// when no contact phase reads them: both must leave every bit of the state as reading and storing
+// them does.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
+#include "integrator_params.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
@@ -14,10 +16,10 @@ namespace {
 
 constexpr Real kDt = 1.0 / 60.0;
 
-World freeWorld(const Vec3& gravity) {
+World freeWorld(const Vec3& gravity, const Integrator integrator = Integrator::kSemiImplicitEuler) {
   WorldConfig config;
   config.dt = kDt;
-  config.integrator = Integrator::kSemiImplicitEuler;
+  config.integrator = integrator;
   config.gravity = gravity;
   return World(config);
 }
@@ -57,13 +59,16 @@ TEST(SemiImplicitPass, ANegativeZeroOwnAccelerationIsRead) {
 }
 
 // The same particle stepped with its own acceleration skipped (no particle has one) and read
-// (another particle has one) ends in the same bits, signed zeros of gravity included.
-TEST(SemiImplicitPass, SkippingZeroOwnAccelerationsChangesNoBit) {
+// (another particle has one) ends in the same bits, signed zeros of gravity included: the
+// semi-implicit Euler pass and, for the other integrators, the force stage.
+class ZeroOwnAccelerations : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(ZeroOwnAccelerations, AreSkippedWithoutChangingABit) {
   for (const Vec3& gravity : {Vec3(-0.0, -9.81, 0.0), Vec3(0.3, -9.81, -0.0)}) {
     const ParticleSpec spec = movingSpec(Vec3(-0.0, 2.0, 0.5), Vec3::Zero());
-    World alone = freeWorld(gravity);
+    World alone = freeWorld(gravity, GetParam());
     const ParticleId skipped = alone.addParticle(spec).value();
-    World beside = freeWorld(gravity);
+    World beside = freeWorld(gravity, GetParam());
     const ParticleId read = beside.addParticle(spec).value();
     beside.addParticle(movingSpec(Vec3::Zero(), Vec3(0.0, 4.0, 0.0))).value();
     for (int step = 0; step < 30; ++step) {
@@ -74,6 +79,9 @@ TEST(SemiImplicitPass, SkippingZeroOwnAccelerationsChangesNoBit) {
     EXPECT_TRUE(sameBits(positionOf(alone, skipped), positionOf(beside, read))) << gravity;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(EveryIntegrator, ZeroOwnAccelerations, everyIntegrator(),
+                         integratorParamName);
 
 // Removing a particle moves the last one into its place: its own acceleration must still act.
 TEST(SemiImplicitPass, AnOwnAccelerationActsAfterAnotherParticleIsRemoved) {
