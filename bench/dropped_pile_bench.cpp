@@ -35,7 +35,8 @@ constexpr Real kDropJitter = 0.007;
 // and the counter velocity_passes says where the largest is.
 constexpr int kDropSettleSteps = 240;
 
-World droppedPileWorld(const std::int64_t n, const Broadphase broadphase) {
+World droppedPileWorld(const std::int64_t n, const Broadphase broadphase,
+                       const std::uint32_t seed = 13) {
   World world(bench::scenarioConfig());
   CollisionSettings settings;
   settings.particle_collisions = true;
@@ -52,7 +53,7 @@ World droppedPileWorld(const std::int64_t n, const Broadphase broadphase) {
   world.addCollider(PlaneCollider{-Vec3::UnitX(), -half_width, walls});
   world.addCollider(PlaneCollider{Vec3::UnitZ(), -half_width, walls});
   world.addCollider(PlaneCollider{-Vec3::UnitZ(), -half_width, walls});
-  std::mt19937 rng(13);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<Real> jitter(-kDropJitter, kDropJitter);
   const Real first = -0.5 * kDropSpacing * static_cast<Real>(side - 1);
   for (std::int64_t i = 0; i < n; ++i) {
@@ -79,10 +80,34 @@ void BM_ScenarioDPrime_DroppedPile(benchmark::State& state) {
   bench::runContactSteps(state, world);
 }
 
+// D' over several blocks (the jitter's seed). A pile's step costs what its contacts ask (how
+// many, and how many velocity passes they take), and the same block settles into another pile
+// when the contact physics or only its rounding differs: the pair correction bound
+// (contact_resolver.h) makes piles with fewer contacts that take more passes than a correction
+// without it. One seed can tell a pile from a code change only by chance; several seeds tell
+// whether a difference is systematic. 600 timed steps each (10 s), so every engine times the same
+// stretch of each pile's life.
+void BM_ScenarioDPrime_DroppedPileSeeds(benchmark::State& state) {
+  const auto seed = static_cast<std::uint32_t>(state.range(1));
+  const std::string name = "D'seed/" + std::to_string(state.range(0)) + "/" + std::to_string(seed);
+  World world = bench::settledScene(
+      name, [&] { return droppedPileWorld(state.range(0), Broadphase::kUniformGrid, seed); });
+  double passes = 0.0;
+  bench::runContactSteps(state, world, [&] {
+    passes += static_cast<double>(world.lastContactStats().velocity_iterations);
+  });
+  state.counters["mean_velocity_passes"] = passes / static_cast<double>(state.iterations());
+}
+
 BENCHMARK(BM_ScenarioDPrime_DroppedPile)
     ->Args({1000, static_cast<std::int64_t>(Broadphase::kUniformGrid)})
     ->Args({10000, static_cast<std::int64_t>(Broadphase::kUniformGrid)})
     ->Args({100000, static_cast<std::int64_t>(Broadphase::kUniformGrid)})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ScenarioDPrime_DroppedPileSeeds)
+    ->ArgsProduct({{1000}, {1, 2, 3, 4, 5, 6}})
+    ->ArgsProduct({{10000}, {1, 2, 3}})
+    ->Iterations(600)
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

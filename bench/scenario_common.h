@@ -88,10 +88,13 @@ inline void useGeneralContactPath(World& world) {
 // at-rest quality of the state the timed steps ended in: its kinetic energy, the largest overlap
 // the contact phase left (m), the contacts and the resolver's passes in the last substep,
 // divergences during the timed steps, and the wall time the scene took to build and settle.
-inline void runContactSteps(benchmark::State& state, World& world) {
+// after_step runs after each step (timed with it: keep it to reading a counter).
+inline void runContactSteps(benchmark::State& state, World& world,
+                            const std::function<void()>& after_step = {}) {
   const std::uint64_t divergences_before = world.divergenceCount();
   for (auto _ : state) {
     world.step();
+    if (after_step) after_step();
     benchmark::DoNotOptimize(world.particles().positions().data());
     benchmark::ClobberMemory();
   }
