@@ -12,7 +12,7 @@ rounds=$2
 shift 2
 names=("$@")
 cd "$dir"
-quick='ScenarioA_FreeFall/|ScenarioA_BandwidthFloor/|ScenarioB_SpringChains/|ScenarioC_GroundGrid|ScenarioC_ColliderMix|ScenarioD_SettledPile/|ScenarioD_FrictionPile/|ScenarioDPrime_DroppedPile/(1000|10000)/|RigidParticleRain/2000/4/0/'
+quick='ScenarioA_FreeFall/|ScenarioA_BandwidthFloor/|ScenarioB_SpringChains/|ScenarioC_GroundGrid|ScenarioC_ColliderMix|ScenarioD_SettledPile/|ScenarioD_FrictionPile/|ScenarioDPrime_DroppedPile/(1000|10000)/|ScenarioDPrime_DroppedPileSeeds/1000/|RigidParticleRain/2000/4/0/'
 stamp() { echo "$(date -u +%FT%TZ) load $(cut -d' ' -f1-3 /proc/loadavg)"; }
 ( while true; do echo "## $(stamp)"; ps -eo pid,pcpu,etimes,comm --sort=-pcpu | head -5; sleep 30; done ) > monitor.txt 2>&1 &
 monitor=$!
