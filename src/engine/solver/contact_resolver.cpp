@@ -562,14 +562,14 @@ void ContactResolver::flushIsolatedBatch(const std::vector<Contact>& contacts, V
   batch_rubs_ = false;
 }
 
-template <bool kBackward>
-Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse_mass) {
-  // One pass of resolveVelocities() when no row has friction, with the same arithmetic written
-  // per component (Eigen's order: the dot product is (x + y) + z). Rows come grouped by their
-  // first particle (pairs sorted by it within a height layer, collider contacts by particle), and
-  // each row's update of v_a is the next row's input: v_a and w_a are kept in registers while the
-  // first particle stays the same, off the store-to-load round trip. A row's second particle is
-  // never the held one (b != a), so memory is current for it.
+template <bool kBackward, bool kFriction>
+Real ContactResolver::velocityPass(Vec3Map& v, const ConstScalarMap& inverse_mass) {
+  // One pass of resolveVelocities(), per component in Eigen's order (a dot product is
+  // (x + y) + z). Rows come grouped by their first particle (pairs sorted by it within a height
+  // layer, collider contacts by particle), and each row's update of v_a is the next row's input:
+  // v_a and w_a are kept in registers while the first particle stays the same, off the
+  // store-to-load round trip. A row's second particle is never the held one (b != a), so memory
+  // is current for it.
   const std::size_t count = row_count_;
   const bool prefetch = count * sizeof(Row) > kStreamingBytes;
   Real* const velocity = v.data();
@@ -643,6 +643,32 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
       if (b && wb > 0.0) touch(row.b.particleIndex());
       largest_change = std::max(largest_change, std::abs(j * w_sum));
     }
+    if constexpr (kFriction) {
+      if (!(row.flags & Row::kFriction)) continue;
+      // Coulomb at the relative velocity the normal impulse left.
+      Real sx = vax;
+      Real sy = vay;
+      Real sz = vaz;
+      if (b) {
+        sx -= vb[0];
+        sy -= vb[1];
+        sz -= vb[2];
+      }
+      const response::Vec<Real> friction = response::coulomb(
+          response::lanes(friction_total_[k]), response::Vec<Real>{{sx, sy, sz}},
+          response::Vec<Real>{{nx, ny, nz}}, effective_mass, friction_coefficient_[k], total);
+      const Vec3 change = response::eigen(friction) - friction_total_[k];
+      friction_total_[k] = response::eigen(friction);
+      vax += wa * change.x();
+      vay += wa * change.y();
+      vaz += wa * change.z();
+      if (b) {
+        vb[0] -= wb * change.x();
+        vb[1] -= wb * change.y();
+        vb[2] -= wb * change.z();
+      }
+      largest_change = std::max(largest_change, change.norm() * w_sum);
+    }
   }
   if (held != kNoParticle) {
     Real* const p = velocity + 3 * std::size_t{held};
@@ -655,61 +681,16 @@ Real ContactResolver::frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse
 
 int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                                        const CollisionSettings& settings) {
-  const std::size_t count = row_count_;
   int passes = 0;
-  if (!any_friction_) {
-    while (passes < settings.max_iterations) {
-      ++passes;
-      // Alternate the sweep direction, as below.
-      const Real largest_change = passes % 2 == 0 ? frictionlessPass<true>(v, inverse_mass)
-                                                  : frictionlessPass<false>(v, inverse_mass);
-      if (largest_change <= settings.velocity_tolerance) break;
-    }
-    return passes;
-  }
   while (passes < settings.max_iterations) {
     ++passes;
-    Real largest_change = 0.0;
     // Alternate the sweep direction (symmetric Gauss-Seidel): chains converge from both ends.
     const bool backward = passes % 2 == 0;
-    for (std::size_t step = 0; step < count; ++step) {
-      const std::size_t k = backward ? count - 1 - step : step;
-      Row& row = rows_[k];
-      if (!(row.flags & Row::kActive)) continue;
-      const bool b = row.flags & Row::kHasB;
-      const Real wa = inverse_mass[row.a.particleIndex()];
-      const Real wb = b ? inverse_mass[row.b.particleIndex()] : 0.0;
-      // As prepare() summed them (an active row's sum is positive).
-      const Real w_sum = wa + wb;
-      // Depends on the row only, so it is computed ahead of the chain of velocity updates from
-      // row to row, which then multiplies instead of dividing.
-      const Real effective_mass = 1.0 / w_sum;
-      Vec3 relative = v.col(row.a.particleIndex());
-      if (b) relative -= v.col(row.b.particleIndex());
-      const Real total = response::accumulate(row.total, row.target, relative.dot(row.normal),
-                                              effective_mass, row.unilateral());
-      const Real j = total - row.total;
-      row.total = total;
-      if (j != 0.0) {
-        v.col(row.a.particleIndex()) += (j * wa) * row.normal;
-        if (b) v.col(row.b.particleIndex()) -= (j * wb) * row.normal;
-        if (wa > 0.0) touch(row.a.particleIndex());
-        if (b && wb > 0.0) touch(row.b.particleIndex());
-        largest_change = std::max(largest_change, std::abs(j * w_sum));
-      }
-      if (row.flags & Row::kFriction) {
-        Vec3 relative_now = v.col(row.a.particleIndex());
-        if (b) relative_now -= v.col(row.b.particleIndex());
-        const Vec3 friction = response::eigen(response::coulomb(
-            response::lanes(friction_total_[k]), response::lanes(relative_now),
-            response::lanes(row.normal), effective_mass, friction_coefficient_[k], row.total));
-        const Vec3 change = friction - friction_total_[k];
-        friction_total_[k] = friction;
-        v.col(row.a.particleIndex()) += wa * change;
-        if (b) v.col(row.b.particleIndex()) -= wb * change;
-        largest_change = std::max(largest_change, change.norm() * w_sum);
-      }
-    }
+    const Real largest_change = any_friction_
+                                    ? (backward ? velocityPass<true, true>(v, inverse_mass)
+                                                : velocityPass<false, true>(v, inverse_mass))
+                                    : (backward ? velocityPass<true, false>(v, inverse_mass)
+                                                : velocityPass<false, false>(v, inverse_mass));
     if (largest_change <= settings.velocity_tolerance) break;
   }
   return passes;

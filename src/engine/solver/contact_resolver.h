@@ -189,9 +189,10 @@ class ContactResolver {
 
   int resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass,
                         const CollisionSettings& settings);
-  // One velocity pass when no row has friction; returns the largest change.
-  template <bool kBackward>
-  Real frictionlessPass(Vec3Map& v, const ConstScalarMap& inverse_mass);
+  // One velocity pass over the rows (kFriction: some row has friction); returns the largest
+  // change.
+  template <bool kBackward, bool kFriction>
+  Real velocityPass(Vec3Map& v, const ConstScalarMap& inverse_mass);
   // Moves each particle with its resting contacts' impulses (see resolve()).
   void followRestingImpulses(Vec3Map& x, const Vec3Map& v, const ConstScalarMap& inverse_mass);
   void indexWarmByKey() const;
