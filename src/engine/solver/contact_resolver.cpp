@@ -657,8 +657,9 @@ Real ContactResolver::velocityPass(Vec3Map& v, const ConstScalarMap& inverse_mas
       const response::Vec<Real> friction = response::coulomb(
           response::lanes(friction_total_[k]), response::Vec<Real>{{sx, sy, sz}},
           response::Vec<Real>{{nx, ny, nz}}, effective_mass, friction_coefficient_[k], total);
-      const Vec3 change = response::eigen(friction) - friction_total_[k];
-      friction_total_[k] = response::eigen(friction);
+      const Vec3 next = response::eigen(friction);
+      const Vec3 change = next - friction_total_[k];
+      friction_total_[k] = next;
       vax += wa * change.x();
       vay += wa * change.y();
       vaz += wa * change.z();
