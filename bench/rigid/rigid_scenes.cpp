@@ -39,6 +39,7 @@ void addWalls(RigidScene& scene, const double inner, const double half_thickness
   scene.bodies.push_back(fixedBox(across_y, Eigen::Vector3d(0.0, centre, half_height)));
   scene.bodies.push_back(fixedBox(across_y, Eigen::Vector3d(0.0, -centre, half_height)));
   scene.inner_half_width = inner;
+  scene.wall_height = height;
 }
 
 // Uniform over the rotations (Shoemake, Graphics Gems III).

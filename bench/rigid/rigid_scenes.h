@@ -52,6 +52,9 @@ struct RigidScene {
   // Half-width of the square region the walls enclose (|x|, |y| below it); 0 when there are no
   // walls. A dynamic body outside it, or below the ground, has escaped.
   double inner_half_width = 0.0;
+  // How high the walls stand: a body dropped from above them may be thrown over, which is physics;
+  // one that leaves below their top has gone through.
+  double wall_height = 0.0;
 };
 
 // A structure stood when its top body ended within this distance of where it started.

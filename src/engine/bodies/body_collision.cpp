@@ -34,15 +34,21 @@ bool awakeBody(const BodyStore& bodies, const BodyId id) {
   return bodies.awake(bodies.denseIndexUnchecked(id));
 }
 
-// Carries the impulses of the old contact's points over to the new one's by feature id, and the
-// coupled masses it kept inverted (prepareContact inverts them again when they have changed).
+// Carries the normal impulses of the old contact's points over to the new one's by feature id,
+// the manifold's friction whatever its points (a resting face whose clipped points change ids
+// from step to step keeps its grip: the 5,050-box pyramid at the defaults fell asleep in 10 s on
+// 16.6 ms a frame with the friction carried only while a point stayed, 7.4 ms with it always
+// carried), and the coupled masses it kept inverted (prepareContact inverts them again when they
+// have changed).
 void carryImpulses(const BodyContact& old, BodyContact& contact) {
   contact.coupled = old.coupled;
   contact.upper_alone = old.upper_alone;
+  contact.friction_impulse = old.friction_impulse;
+  contact.twist_impulse = old.twist_impulse;
   for (int k = 0; k < contact.manifold.count; ++k) {
     for (int j = 0; j < old.manifold.count; ++j) {
       if (old.manifold.points[j].id == contact.manifold.points[k].id) {
-        contact.impulses[k] = old.impulses[j];
+        contact.normal_impulses[k] = old.normal_impulses[j];
         break;
       }
     }
@@ -106,6 +112,19 @@ bool holds(const std::vector<IdPair>& pairs, const IdPair& pair) {
 }
 
 }  // namespace
+
+std::array<Vec3, Manifold::kMaxPoints> offsetsFromCenter(const Manifold& manifold) {
+  Vec3 center = Vec3::Zero();
+  for (int k = 0; k < manifold.count; ++k) center += manifold.points[k].point;
+  if (manifold.count > 0) center /= static_cast<Real>(manifold.count);
+  std::array<Vec3, Manifold::kMaxPoints> offsets;
+  offsets.fill(Vec3::Zero());
+  for (int k = 0; k < manifold.count; ++k) {
+    const Vec3 d = manifold.points[k].point - center;
+    offsets[k] = d - d.dot(manifold.normal) * manifold.normal;
+  }
+  return offsets;
+}
 
 Material combineMaterials(const Material& a, const Material& b) {
   return Material{0.5 * (a.restitution + b.restitution), std::sqrt(a.friction * b.friction)};

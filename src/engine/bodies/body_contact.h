@@ -1,7 +1,8 @@
 #pragma once
 // A contact the body solver keeps from step to step: a body shape (side a) against another body
-// shape, a particle or a static collider (side b), its manifold, and the impulses each point ended
-// the last step with (carried over by the point's feature id: warm starting).
+// shape, a particle or a static collider (side b), its manifold, and the impulses it ended the
+// last step with (warm starting): each point's normal impulse, carried over by the point's feature
+// id, and the manifold's friction, carried over while the contact lasts.
 
 #include <array>
 #include <cstdint>
@@ -31,15 +32,14 @@ struct ContactKey {
   }
 };
 
-struct ContactPointImpulse {
-  Real normal = 0.0;
-  Real tangent[2] = {0.0, 0.0};
-};
-
 struct BodyContact {
   ContactKey key;
   Manifold manifold;  // normal from a to b
-  std::array<ContactPointImpulse, Manifold::kMaxPoints> impulses{};
+  std::array<Real, Manifold::kMaxPoints> normal_impulses{};
+  // The friction impulse at the points' centre (world frame: a turning normal takes its tangents
+  // with it) and the twist impulse about the normal (contact_constraint.h).
+  Vec3 friction_impulse = Vec3::Zero();
+  Real twist_impulse = 0.0;
   Real friction = 0.0;
   Real restitution = 0.0;
   // The points' coupled mass when last inverted, and its pseudo-inverse: a resting contact's
@@ -54,6 +54,9 @@ struct BodyContact {
   InvertedMass coupled;
   InvertedMass upper_alone;
 };
+
+// The manifold's points from their centre, in the contact plane (the normal part taken out).
+std::array<Vec3, Manifold::kMaxPoints> offsetsFromCenter(const Manifold& manifold);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -1,8 +1,9 @@
 #pragma once
 // A body contact as the solver sees it during one step: its two solver bodies, its normal and
-// tangents, and per point the anchors (from each centre of mass, fixed for the step) with the
-// terms of its normal row computed once, the separation it had when prepared (moved on by how
-// far the bodies have moved since), and the impulses it accumulates.
+// tangents, per point the anchors (from each centre of mass, fixed for the step) with the terms
+// of its normal row computed once, the separation it had when prepared (moved on by how far the
+// bodies have moved since) and the normal impulse it accumulates, and the friction rows of the
+// manifold as a whole with theirs.
 
 #include <array>
 #include <cstdint>
@@ -26,9 +27,10 @@ struct ContactConstraintPoint {
   Real separation = 0.0;
   Real current = 0.0;
   Real normal_mass = 0.0;
-  Real tangent_mass[2] = {0.0, 0.0};
   Real normal_impulse = 0.0;
-  Real tangent_impulse[2] = {0.0, 0.0};
+  // The point's distance from the manifold's centre in the contact plane: its lever against
+  // turning about the normal.
+  Real arm = 0.0;
 };
 
 using PointBlock = Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>;
@@ -53,6 +55,17 @@ struct ContactConstraint {
   // pseudo-inverse gives the least-norm share, the symmetric one).
   PointBlock normal_block = PointBlock::Zero();
   std::array<ContactConstraintPoint, Manifold::kMaxPoints> points{};
+  // Friction on the manifold as a whole (a patch): two tangent rows at the points' centre (c_a, c_b
+  // from each centre of mass), solved together through their coupled mass K_t (inverted in
+  // friction_block) and bounded together by mu sum_k j_k, and a twist row about the normal,
+  // bounded by mu sum_k j_k arm_k: what the points' own cones would resist, sliding and turning
+  // about the centre, with one root a pass instead of one a point.
+  Vec3 center_a = Vec3::Zero();
+  Vec3 center_b = Vec3::Zero();
+  Eigen::Matrix<Real, 2, 2> friction_block = Eigen::Matrix<Real, 2, 2>::Zero();
+  Real twist_mass = 0.0;
+  Real friction_impulse[2] = {0.0, 0.0};
+  Real twist_impulse = 0.0;
 };
 
 }  // namespace engine

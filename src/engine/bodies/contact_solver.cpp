@@ -262,11 +262,10 @@ void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
   if (c.b != kNoBody) move(s.b, v_b);
   // An impact acts once: its impulse is no substep's to warm start again, and the contact holds
   // nothing more this step (nor friction, bounded by a normal impulse of 0).
-  for (int k = 0; k < c.count; ++k) {
-    c.points[k].normal_impulse = 0.0;
-    c.points[k].tangent_impulse[0] = 0.0;
-    c.points[k].tangent_impulse[1] = 0.0;
-  }
+  for (int k = 0; k < c.count; ++k) c.points[k].normal_impulse = 0.0;
+  c.friction_impulse[0] = 0.0;
+  c.friction_impulse[1] = 0.0;
+  c.twist_impulse = 0.0;
   c.impact = true;
 }
 
@@ -336,42 +335,54 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   }
 }
 
-// Coulomb's cone at each point: the tangential impulse (both directions together) at most mu j_n.
+// Coulomb's cone on the manifold: the tangent impulse at the centre (both directions together) at
+// most mu sum j_k, the twist about the normal at most mu sum j_k arm_k.
 void solveFriction(ContactConstraint& c, Sides& s) {
-  // The two sides' velocities in locals for the manifold's points (the sides are two references
-  // the compiler cannot tell apart, so every write through one would reload the other).
+  Real load = 0.0;
+  Real twist_load = 0.0;
+  for (int k = 0; k < c.count; ++k) {
+    load += c.points[k].normal_impulse;
+    twist_load += c.points[k].normal_impulse * c.points[k].arm;
+  }
+  // A contact that carries no load and holds no friction stays so: the cone is a point.
+  if (load == 0.0 && c.friction_impulse[0] == 0.0 && c.friction_impulse[1] == 0.0 &&
+      c.twist_impulse == 0.0) {
+    return;
+  }
+  // The two sides' velocities in locals (the sides are two references the compiler cannot tell
+  // apart, so every write through one would reload the other).
   Vec3 v_a = s.a.v;
   Vec3 w_a = s.a.w;
   Vec3 v_b = s.b.v;
   Vec3 w_b = s.b.w;
   const Mat3& inertia_a = s.a.inverse_inertia;
   const Mat3& inertia_b = s.b.inverse_inertia;
-  for (int k = 0; k < c.count; ++k) {
-    ContactConstraintPoint& cp = c.points[k];
-    // A point that carries no load and holds no friction stays so: the cone is a point.
-    if (cp.normal_impulse == 0.0 && cp.tangent_impulse[0] == 0.0 && cp.tangent_impulse[1] == 0.0) {
-      continue;
-    }
-    const Vec3 dv = (v_b + w_b.cross(cp.r_b)) - (v_a + w_a.cross(cp.r_a));
-    const Real old0 = cp.tangent_impulse[0];
-    const Real old1 = cp.tangent_impulse[1];
-    Real t0 = old0 - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
-    Real t1 = old1 - cp.tangent_mass[1] * dv.dot(c.tangent[1]);
-    const Real limit = c.friction * cp.normal_impulse;
-    const Real length_squared = t0 * t0 + t1 * t1;
-    if (length_squared > limit * limit) {
-      const Real scale = limit / std::sqrt(length_squared);
-      t0 *= scale;
-      t1 *= scale;
-    }
-    cp.tangent_impulse[0] = t0;
-    cp.tangent_impulse[1] = t1;
-    // The impulse p at the anchors: -p on a, +p on b (SolverBody::applyImpulse).
-    const Vec3 p = (t0 - old0) * c.tangent[0] + (t1 - old1) * c.tangent[1];
-    v_a -= c.inverse_mass_a * p;
-    w_a -= inertia_a * cp.r_a.cross(p);
-    v_b += c.inverse_mass_b * p;
-    w_b += inertia_b * cp.r_b.cross(p);
+  // lambda' = lambda - K_t^-1 (t_i.dv at the centre), clamped to the disc of radius mu sum j_k.
+  const Vec3 dv = (v_b + w_b.cross(c.center_b)) - (v_a + w_a.cross(c.center_a));
+  const Eigen::Matrix<Real, 2, 1> old(c.friction_impulse[0], c.friction_impulse[1]);
+  Eigen::Matrix<Real, 2, 1> total =
+      old -
+      c.friction_block * Eigen::Matrix<Real, 2, 1>(dv.dot(c.tangent[0]), dv.dot(c.tangent[1]));
+  const Real limit = c.friction * load;
+  const Real length_squared = total.squaredNorm();
+  if (length_squared > limit * limit) total *= limit / std::sqrt(length_squared);
+  c.friction_impulse[0] = total[0];
+  c.friction_impulse[1] = total[1];
+  // The impulse p at the centre: -p on a, +p on b (SolverBody::applyImpulse).
+  const Vec3 p = (total[0] - old[0]) * c.tangent[0] + (total[1] - old[1]) * c.tangent[1];
+  v_a -= c.inverse_mass_a * p;
+  w_a -= inertia_a * c.center_a.cross(p);
+  v_b += c.inverse_mass_b * p;
+  w_b += inertia_b * c.center_b.cross(p);
+  if (c.twist_mass > 0.0) {
+    // tau' = tau - n.(w_b - w_a) / (n.I_a^-1 n + n.I_b^-1 n), within +-mu sum j_k arm_k.
+    const Real twist_limit = c.friction * twist_load;
+    const Real twist = std::clamp(c.twist_impulse - c.twist_mass * c.normal.dot(w_b - w_a),
+                                  -twist_limit, twist_limit);
+    const Vec3 turn = (twist - c.twist_impulse) * c.normal;
+    c.twist_impulse = twist;
+    w_a -= inertia_a * turn;
+    w_b += inertia_b * turn;
   }
   s.a.v = v_a;
   s.a.w = w_a;
@@ -409,6 +420,8 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
   c.inverse_mass_b = b.inverse_mass;
+  const std::array<Vec3, Manifold::kMaxPoints> offsets = offsetsFromCenter(contact.manifold);
+  Vec3 center = Vec3::Zero();
   for (int k = 0; k < c.count; ++k) {
     const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
@@ -416,12 +429,35 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
     cp.r_b = mp.point - sides.center_b;
     cp.separation = mp.separation;
     cp.normal_mass = effectiveMass(a, cp.r_a, b, cp.r_b, c.normal);
-    cp.tangent_mass[0] = effectiveMass(a, cp.r_a, b, cp.r_b, c.tangent[0]);
-    cp.tangent_mass[1] = effectiveMass(a, cp.r_a, b, cp.r_b, c.tangent[1]);
-    cp.normal_impulse = contact.impulses[k].normal;
-    cp.tangent_impulse[0] = contact.impulses[k].tangent[0];
-    cp.tangent_impulse[1] = contact.impulses[k].tangent[1];
+    cp.normal_impulse = contact.normal_impulses[k];
+    cp.arm = offsets[k].norm();
+    center += mp.point;
   }
+  if (c.count > 0) center /= static_cast<Real>(c.count);
+  c.center_a = center - sides.center_a;
+  c.center_b = center - sides.center_b;
+  // K_t,ij = (m_a^-1 + m_b^-1) delta_ij + (c_a x t_i).I_a^-1 (c_a x t_j) + (c_b x t_i).I_b^-1 (...)
+  Eigen::Matrix<Real, 3, 2> turn_a;
+  Eigen::Matrix<Real, 3, 2> turn_b;
+  for (int i = 0; i < 2; ++i) {
+    turn_a.col(i) = c.center_a.cross(c.tangent[i]);
+    turn_b.col(i) = c.center_b.cross(c.tangent[i]);
+  }
+  const Eigen::Matrix<Real, 2, 2> tangent_mass =
+      (a.inverse_mass + b.inverse_mass) * Eigen::Matrix<Real, 2, 2>::Identity() +
+      turn_a.transpose() * a.inverse_inertia * turn_a +
+      turn_b.transpose() * b.inverse_inertia * turn_b;
+  const Real det = tangent_mass.determinant();
+  if (det > 0.0) {
+    c.friction_block << tangent_mass(1, 1), -tangent_mass(0, 1), -tangent_mass(1, 0),
+        tangent_mass(0, 0);
+    c.friction_block /= det;
+  }
+  const Real twist = c.normal.dot((a.inverse_inertia + b.inverse_inertia) * c.normal);
+  c.twist_mass = twist > 0.0 ? 1.0 / twist : 0.0;
+  c.friction_impulse[0] = contact.friction_impulse.dot(c.tangent[0]);
+  c.friction_impulse[1] = contact.friction_impulse.dot(c.tangent[1]);
+  c.twist_impulse = contact.twist_impulse;
   if (c.count > 1) {
     const int all[Manifold::kMaxPoints] = {0, 1, 2, 3};
     const auto mass = coupledMass(c, a, b, all, c.count);
@@ -464,15 +500,17 @@ bool warmStart(ContactConstraint& c, Sides& s, const ContactPass& pass) {
     }
   }
   if (c.impact) return false;
-  // The points' impulses P_k together: -sum P on a's momentum, -sum r_a x P on its angular
-  // momentum, + on b.
-  Vec3 linear = Vec3::Zero();
-  Vec3 angular_a = Vec3::Zero();
-  Vec3 angular_b = Vec3::Zero();
+  // The points' normal impulses P_k, the friction F at the centre and the twist tau together:
+  // -(sum P + F) on a's momentum, -(sum r_a x P + c_a x F + tau n) on its angular momentum, +
+  // on b.
+  const Vec3 friction = c.friction_impulse[0] * c.tangent[0] + c.friction_impulse[1] * c.tangent[1];
+  const Vec3 twist = c.twist_impulse * c.normal;
+  Vec3 linear = friction;
+  Vec3 angular_a = c.center_a.cross(friction) + twist;
+  Vec3 angular_b = c.center_b.cross(friction) + twist;
   for (int k = 0; k < c.count; ++k) {
     const ContactConstraintPoint& cp = c.points[k];
-    const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
-                   cp.tangent_impulse[1] * c.tangent[1];
+    const Vec3 p = cp.normal_impulse * c.normal;
     linear += p;
     angular_a += cp.r_a.cross(p);
     angular_b += cp.r_b.cross(p);
@@ -586,11 +624,10 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     const ContactConstraint& c = constraints[row.constraint];
     ContactConstraint& upper = row.upper_alone;
     upper.impact = c.impact;
-    for (int k = 0; k < c.count; ++k) {
-      upper.points[k].normal_impulse = c.points[k].normal_impulse;
-      upper.points[k].tangent_impulse[0] = c.points[k].tangent_impulse[0];
-      upper.points[k].tangent_impulse[1] = c.points[k].tangent_impulse[1];
-    }
+    for (int k = 0; k < c.count; ++k) upper.points[k].normal_impulse = c.points[k].normal_impulse;
+    upper.friction_impulse[0] = c.friction_impulse[0];
+    upper.friction_impulse[1] = c.friction_impulse[1];
+    upper.twist_impulse = c.twist_impulse;
     Sides s(upper, bodies);
     takeSeparations(upper, s);
     if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
@@ -602,11 +639,10 @@ void storeImpulses(const std::vector<ContactConstraint>& constraints,
                    std::vector<BodyContact>& contacts) {
   for (const ContactConstraint& c : constraints) {
     BodyContact& contact = contacts[c.contact];
-    for (int k = 0; k < c.count; ++k) {
-      contact.impulses[k].normal = c.points[k].normal_impulse;
-      contact.impulses[k].tangent[0] = c.points[k].tangent_impulse[0];
-      contact.impulses[k].tangent[1] = c.points[k].tangent_impulse[1];
-    }
+    for (int k = 0; k < c.count; ++k) contact.normal_impulses[k] = c.points[k].normal_impulse;
+    contact.friction_impulse =
+        c.friction_impulse[0] * c.tangent[0] + c.friction_impulse[1] * c.tangent[1];
+    contact.twist_impulse = c.twist_impulse;
   }
 }
 

@@ -435,10 +435,10 @@ std::uint64_t World::stateHash() const {
       hasher.add(c.key.b);
       for (int k = 0; k < c.manifold.count; ++k) {
         hasher.add(static_cast<std::uint64_t>(c.manifold.points[k].id));
-        hasher.add(c.impulses[k].normal);
-        hasher.add(c.impulses[k].tangent[0]);
-        hasher.add(c.impulses[k].tangent[1]);
+        hasher.add(c.normal_impulses[k]);
       }
+      hasher.add(c.friction_impulse);
+      hasher.add(c.twist_impulse);
       // The coupled masses a contact keeps inverted (their inverses follow from them) are
       // refreshed only when they change beyond rounding: state that steers the solve.
       for (const BodyContact::InvertedMass* kept : {&c.coupled, &c.upper_alone}) {

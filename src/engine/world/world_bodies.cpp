@@ -200,15 +200,20 @@ std::vector<BodyContactReport> World::bodyContacts() const {
         r.particle = ParticleId::fromPacked(c.key.b);
         break;
     }
-    Vec3 t0;
-    Vec3 t1;
-    tangentBasis(c.manifold.normal, t0, t1);
+    // The manifold's friction and twist as point impulses, the least-norm split with the same
+    // sum and the same torque about the centre: f_k = F / n + tau (n x d_k) / sum |d_i|^2.
+    const std::array<Vec3, Manifold::kMaxPoints> offsets = offsetsFromCenter(c.manifold);
+    Real spread = 0.0;
+    for (int k = 0; k < c.manifold.count; ++k) spread += offsets[k].squaredNorm();
     for (int k = 0; k < c.manifold.count; ++k) {
       BodyContactReport::Point p;
       p.position = c.manifold.points[k].point;
       p.separation = c.manifold.points[k].separation;
-      p.normal_impulse = c.impulses[k].normal;
-      p.friction_impulse = c.impulses[k].tangent[0] * t0 + c.impulses[k].tangent[1] * t1;
+      p.normal_impulse = c.normal_impulses[k];
+      p.friction_impulse = c.friction_impulse / static_cast<Real>(c.manifold.count);
+      if (spread > 0.0) {
+        p.friction_impulse += c.twist_impulse / spread * c.manifold.normal.cross(offsets[k]);
+      }
       r.points.push_back(p);
     }
     out.push_back(std::move(r));

@@ -119,6 +119,23 @@ TEST(Stacks, PyramidOfFiftyFallsAsleepAtTheDefaults) {
   EXPECT_LT(deepest, 1e-3);
 }
 
+// The pyramid of 5,050 at the default 4 x 2: its slope boxes stop turning once friction acts on
+// each contact as a whole with its twist, and the pile is asleep within 2 s (with friction point
+// by point a few boxes on its slopes kept turning above the sleep speed and it fell asleep between
+// 3 and 4 s, docs/BENCHMARKS.md 2026-11-27 session 10). A frame awake costs about 60 ms in
+// Release, so this test runs 2 s of it and then checks that it stands asleep.
+TEST(Stacks, TheHundredPyramidFallsAsleepWithinTwoSecondsAtTheDefaults) {
+  Structure s;
+  pyramid(s, 100);
+  const BodyStore& bodies = s.world.bodies();
+  for (int step = 0; step < 120; ++step) s.world.step();
+  int awake = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) awake += bodies.awake(i) ? 1 : 0;
+  std::printf("[ stack ] pyramid of 5050 at the defaults: %d awake after 2 s\n", awake);
+  EXPECT_EQ(awake, 0);
+  expectStands(s, "pyramid of 5050 at the defaults, from 2 s");
+}
+
 TEST(Stacks, TheTwentyPyramidStandsWithOnePass) {
   // Shock propagation carries what one pass per substep does not converge on.
   Structure s;
