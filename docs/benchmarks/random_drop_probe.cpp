@@ -7,7 +7,8 @@
 //   /tmp/random_drop_probe 4 600              # substeps, frames
 //   NOGRAVITY=1 /tmp/random_drop_probe 4 600  # then the deepest pair with gravity off, at rest
 // Environment: SEED=n the scene's seed (1, the benchmark's, by default), ITER=n iterations,
-// RELAX=n relaxing passes. Besides the deepest overlap each second it prints, for the last 3 s
+// RELAX=n relaxing passes. Besides the kinetic energy and the deepest overlap each second it
+// prints (docs/benchmarks/rigid_2026-11-27_session10_random_drop_ke.sh sums those up), for the last 3 s
 // (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
 // energy at the end ("late"), and for the deepest pair at the end the least overlap over the
 // 15 axes of the separating axis test, computed here from the two boxes alone.
@@ -77,8 +78,8 @@ int main(int argc, char** argv) {
           worst = std::max(worst, -p.separation);
           if (-p.separation > 0.01) ++n;
         }
-      std::printf("t %.0f s: deepest %.4f m, points deeper than 1 cm: %d\n", (f + 1) / 60.0, worst,
-                  n);
+      std::printf("t %.0f s: KE %.3g J deepest %.4f m, points deeper than 1 cm: %d\n",
+                  (f + 1) / 60.0, world.kineticEnergy(), worst, n);
     }
   }
   {
