@@ -113,17 +113,16 @@ bool holds(const std::vector<IdPair>& pairs, const IdPair& pair) {
 
 }  // namespace
 
-std::array<Vec3, Manifold::kMaxPoints> offsetsFromCenter(const Manifold& manifold) {
-  Vec3 center = Vec3::Zero();
-  for (int k = 0; k < manifold.count; ++k) center += manifold.points[k].point;
-  if (manifold.count > 0) center /= static_cast<Real>(manifold.count);
-  std::array<Vec3, Manifold::kMaxPoints> offsets;
-  offsets.fill(Vec3::Zero());
+ContactPatch contactPatch(const Manifold& manifold) {
+  ContactPatch patch;
+  patch.offsets.fill(Vec3::Zero());
+  for (int k = 0; k < manifold.count; ++k) patch.center += manifold.points[k].point;
+  if (manifold.count > 0) patch.center /= static_cast<Real>(manifold.count);
   for (int k = 0; k < manifold.count; ++k) {
-    const Vec3 d = manifold.points[k].point - center;
-    offsets[k] = d - d.dot(manifold.normal) * manifold.normal;
+    const Vec3 d = manifold.points[k].point - patch.center;
+    patch.offsets[k] = d - d.dot(manifold.normal) * manifold.normal;
   }
-  return offsets;
+  return patch;
 }
 
 Material combineMaterials(const Material& a, const Material& b) {

@@ -55,8 +55,13 @@ struct BodyContact {
   InvertedMass upper_alone;
 };
 
-// The manifold's points from their centre, in the contact plane (the normal part taken out).
-std::array<Vec3, Manifold::kMaxPoints> offsetsFromCenter(const Manifold& manifold);
+// Where a manifold's friction acts: the centre of its points, and each point from it in the
+// contact plane (the normal part taken out).
+struct ContactPatch {
+  Vec3 center = Vec3::Zero();
+  std::array<Vec3, Manifold::kMaxPoints> offsets{};
+};
+ContactPatch contactPatch(const Manifold& manifold);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

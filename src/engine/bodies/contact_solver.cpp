@@ -420,8 +420,7 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
   c.inverse_mass_b = b.inverse_mass;
-  const std::array<Vec3, Manifold::kMaxPoints> offsets = offsetsFromCenter(contact.manifold);
-  Vec3 center = Vec3::Zero();
+  const ContactPatch patch = contactPatch(contact.manifold);
   for (int k = 0; k < c.count; ++k) {
     const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
@@ -430,12 +429,10 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
     cp.separation = mp.separation;
     cp.normal_mass = effectiveMass(a, cp.r_a, b, cp.r_b, c.normal);
     cp.normal_impulse = contact.normal_impulses[k];
-    cp.arm = offsets[k].norm();
-    center += mp.point;
+    cp.arm = patch.offsets[k].norm();
   }
-  if (c.count > 0) center /= static_cast<Real>(c.count);
-  c.center_a = center - sides.center_a;
-  c.center_b = center - sides.center_b;
+  c.center_a = patch.center - sides.center_a;
+  c.center_b = patch.center - sides.center_b;
   // K_t,ij = (m_a^-1 + m_b^-1) delta_ij + (c_a x t_i).I_a^-1 (c_a x t_j) + (c_b x t_i).I_b^-1 (...)
   Eigen::Matrix<Real, 3, 2> turn_a;
   Eigen::Matrix<Real, 3, 2> turn_b;

@@ -202,9 +202,9 @@ std::vector<BodyContactReport> World::bodyContacts() const {
     }
     // The manifold's friction and twist as point impulses, the least-norm split with the same
     // sum and the same torque about the centre: f_k = F / n + tau (n x d_k) / sum |d_i|^2.
-    const std::array<Vec3, Manifold::kMaxPoints> offsets = offsetsFromCenter(c.manifold);
+    const ContactPatch patch = contactPatch(c.manifold);
     Real spread = 0.0;
-    for (int k = 0; k < c.manifold.count; ++k) spread += offsets[k].squaredNorm();
+    for (int k = 0; k < c.manifold.count; ++k) spread += patch.offsets[k].squaredNorm();
     for (int k = 0; k < c.manifold.count; ++k) {
       BodyContactReport::Point p;
       p.position = c.manifold.points[k].point;
@@ -212,7 +212,7 @@ std::vector<BodyContactReport> World::bodyContacts() const {
       p.normal_impulse = c.normal_impulses[k];
       p.friction_impulse = c.friction_impulse / static_cast<Real>(c.manifold.count);
       if (spread > 0.0) {
-        p.friction_impulse += c.twist_impulse / spread * c.manifold.normal.cross(offsets[k]);
+        p.friction_impulse += c.twist_impulse / spread * c.manifold.normal.cross(patch.offsets[k]);
       }
       r.points.push_back(p);
     }

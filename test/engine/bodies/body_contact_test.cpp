@@ -93,13 +93,18 @@ TEST(BodyContact, ACubeDroppedFlatBouncesToTheQuarterHeight) {
   EXPECT_LT(world.kineticEnergy(), 1e-6);
 }
 
-TEST(BodyContact, ACoulombSlideStopsWhereFrictionSays) {
-  World world(config());
+// A 1 kg unit cube resting on the ground (mu 0.5 both) with velocities v and w; its dense index.
+std::size_t cubeOnTheGround(World& world, const Vec3& v, const Vec3& w) {
   addGround(world, Material{0.0, 0.5});
   BodySpec spec = body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, 0.5));
-  spec.linear_velocity = Vec3(5.0, 0.0, 0.0);
-  const BodyId id = *world.addBody(spec);
-  const std::size_t i = *world.bodies().find(id);
+  spec.linear_velocity = v;
+  spec.angular_velocity = w;
+  return *world.bodies().find(*world.addBody(spec));
+}
+
+TEST(BodyContact, ACoulombSlideStopsWhereFrictionSays) {
+  World world(config());
+  const std::size_t i = cubeOnTheGround(world, Vec3(5.0, 0.0, 0.0), Vec3::Zero());
   Real stop_time = -1.0;
   Real worst_w = 0.0;
   for (int step = 1; step <= 120; ++step) {
@@ -125,11 +130,7 @@ TEST(BodyContact, ACoulombSlideStopsWhereFrictionSays) {
 // and does not move off its spot. Without the twist row nothing would stop it.
 TEST(BodyContact, ASpinningCubeStopsWhereItsCornersFrictionSays) {
   World world(config());
-  addGround(world, Material{0.0, 0.5});
-  BodySpec spec = body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, 0.5));
-  spec.angular_velocity = Vec3(0.0, 0.0, 5.0);
-  const BodyId id = *world.addBody(spec);
-  const std::size_t i = *world.bodies().find(id);
+  const std::size_t i = cubeOnTheGround(world, Vec3::Zero(), Vec3(0.0, 0.0, 5.0));
   const Real h = world.config().dt / world.bodySettings().substeps;
   Real stop_time = -1.0;
   Real angle = 0.0;
@@ -175,7 +176,7 @@ TEST(BodyContact, ASpinningCubeStopsWhereItsCornersFrictionSays) {
   EXPECT_LT(worst_torque_error, 1e-9);
 }
 
-// A 1 kg unit cube sliding on the ground (mu 0.5 both) from v0 along `direction` (in the plane):
+// The cube on the ground sliding from v0 along `direction` (in the plane):
 // where it ends up along and across that direction, and when it stopped.
 struct ObliqueSlide {
   Real along = 0.0;
@@ -186,12 +187,8 @@ struct ObliqueSlide {
 
 ObliqueSlide slideAlong(const Vec3& direction, const Real v0) {
   World world(config());
-  addGround(world, Material{0.0, 0.5});
-  BodySpec spec = body(box(Vec3::Constant(0.5), Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, 0.5));
   const Vec3 u = direction.normalized();
-  spec.linear_velocity = v0 * u;
-  const BodyId id = *world.addBody(spec);
-  const std::size_t i = *world.bodies().find(id);
+  const std::size_t i = cubeOnTheGround(world, v0 * u, Vec3::Zero());
   ObliqueSlide slide;
   for (int step = 1; step <= 120; ++step) {
     world.step();
