@@ -14,9 +14,9 @@ namespace engine {
 // another body, a static collider or a particle, the normal from a to the other side, and per
 // point where it is, how far apart the surfaces were (< 0: overlap) and the impulses of the last
 // substep (normal >= 0, and friction along the surface: the impulse body a gives the other side,
-// which gives body a the opposite). The solver's friction acts on the
-// contact as a whole (a force at the points' centre and a torque about the normal); the points'
-// friction impulses are its least-norm split, with the same sum and the same torque.
+// which gives body a the opposite). The solver's friction acts on the contact as a whole (a force
+// at the points' centre and a torque about the normal); the points' friction impulses are its
+// least-norm split, with the same sum and the same torque.
 struct BodyContactReport {
   enum class Other : std::uint8_t { kBody, kCollider, kParticle };
   BodyId body;
