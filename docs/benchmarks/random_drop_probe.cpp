@@ -8,8 +8,8 @@
 //   NOGRAVITY=1 /tmp/random_drop_probe 4 600  # then the deepest pair with gravity off, at rest
 // Environment: SEED=n the scene's seed (1, the benchmark's, by default), ITER=n iterations,
 // RELAX=n relaxing passes. Besides the kinetic energy and the deepest overlap each second it
-// prints (docs/benchmarks/rigid_2026-11-27_session10_random_drop_ke.sh sums those up), for the last 3 s
-// (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
+// prints (docs/benchmarks/rigid_2026-11-27_session10_random_drop_ke.sh sums those up), for the last
+// 3 s (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
 // energy at the end ("late"), and for the deepest pair at the end the least overlap over the
 // 15 axes of the separating axis test, computed here from the two boxes alone.
 #include <algorithm>
