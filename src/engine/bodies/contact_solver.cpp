@@ -21,7 +21,6 @@ class Sides {
   Sides(const ContactConstraint& c, std::vector<SolverBody>& bodies)
       : a(c.a == kNoBody ? still_a_.emplace() : bodies[static_cast<std::size_t>(c.a)]),
         b(c.b == kNoBody ? still_b_.emplace() : bodies[static_cast<std::size_t>(c.b)]) {}
-  Sides(SolverBody& side_a, SolverBody& side_b) : a(side_a), b(side_b) {}
 
  private:
   std::optional<SolverBody> still_a_;
@@ -626,19 +625,7 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     upper.friction_impulse[0] = c.friction_impulse[0];
     upper.friction_impulse[1] = c.friction_impulse[1];
     upper.twist_impulse = c.twist_impulse;
-    // The lower side takes no impulse and keeps its motion but its tilting: what rests on a belt,
-    // a lift or a turntable moves with it (held still, as it was, a column on a belt at 1 m/s
-    // stayed behind at 0.02 m/s), and the rocking the passes leave in a lower body, times the
-    // height of what rests on it, is not handed up a pile (handed up, it blew the 5,050 pyramid
-    // apart at 8 x 1 and brought a heavy-on-light column down).
-    const bool lower_is_a = upper.a == kNoBody;
-    SolverBody held = bodies[static_cast<std::size_t>(lower_is_a ? c.a : c.b)];
-    held.inverse_mass = 0.0;
-    held.inverse_inertia = Mat3::Zero();
-    held.w = upper.normal * upper.normal.dot(held.w);
-    held.pw = upper.normal * upper.normal.dot(held.pw);
-    SolverBody& moving = bodies[static_cast<std::size_t>(lower_is_a ? c.b : c.a)];
-    Sides s(lower_is_a ? held : moving, lower_is_a ? moving : held);
+    Sides s(upper, bodies);
     takeSeparations(upper, s);
     if (upper.friction > 0.0) solveFriction(upper, s);
     if (!upper.impact) solveNormals(upper, s, pass, inverse_h);

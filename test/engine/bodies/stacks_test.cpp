@@ -86,9 +86,10 @@ TEST(Stacks, PyramidOfTwentyStands) {
   expectStands(s, "pyramid of 210");
 }
 
-// Acceptance test 9 at base 100, with 12 substeps of 1 pass (the default 4 of 2 also stands,
-// asleep within 2 s: TheHundredPyramidFallsAsleepWithinTwoSecondsAtTheDefaults below). Without
-// shock propagation its lower rows sink and spin within a second.
+// Acceptance test 9 at base 100, with the settings docs/ACCURACY.md recommends for piles: 12
+// substeps of 1 pass (the default 4 of 2 also stands and falls asleep, after about 3.5 s of up
+// to 0.1 m/s of rocking: bench/rigid, BM_RigidPyramid/100/4/*). Without shock propagation its
+// lower rows sink and spin within a second.
 TEST(Stacks, PyramidOfAHundredStands) {
   Structure s;
   BodySettings settings;
@@ -165,53 +166,6 @@ TEST(Stacks, ThePyramidOfTwentyRestsWithinTheSlopeAtTheDefaults) {
   }
   std::printf("[ stack ] pyramid of 210 awake, 3 to 4 s: deepest overlap %.2e m\n", deepest);
   EXPECT_LT(deepest, settings.linear_slop);
-}
-
-// Three cubes, `radius` from the centre of a kinematic platform that moves at `speed` and turns
-// at `spin`: after 2 s the top cube moves with the platform's point under it, to 3 cm/s, and no
-// contact overlaps beyond the slop. The shock pass once held the lower body still instead of
-// moving with it: on a belt at 1 m/s the column stayed behind at 0.02-0.03 m/s, on a lift at
-// 1 m/s it stood still, 3 cm deep, carried by the push-out alone.
-void expectColumnRides(const Vec3& speed, const Vec3& spin, const Real radius) {
-  Structure s;
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(s.world.setBodySettings(settings));
-  BodySpec platform = body(box(Vec3(50.0, 50.0, 0.5)), 1.0, Vec3(0.0, 0.0, -0.5));
-  platform.type = BodyType::kKinematic;
-  platform.linear_velocity = speed;
-  platform.angular_velocity = spin;
-  const BodyId platform_id = *s.world.addBody(platform);
-  for (int k = 0; k < 3; ++k) {
-    s.boxes.push_back(
-        *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(radius, 0.0, 0.5 + k))));
-  }
-  for (int step = 0; step < 120; ++step) s.world.step();
-  const BodyStore& bodies = s.world.bodies();
-  const std::size_t top = *bodies.find(s.boxes.back());
-  const std::size_t base = *bodies.find(platform_id);
-  const Vec3 under =
-      bodies.linearVelocity(base) +
-      bodies.angularVelocity(base).cross(bodies.position(top) - bodies.position(base));
-  const Vec3 v = bodies.linearVelocity(top);
-  Real deepest = 0.0;
-  for (const BodyContactReport& contact : s.world.bodyContacts()) {
-    for (const auto& point : contact.points) deepest = std::max(deepest, -point.separation);
-  }
-  std::printf(
-      "[ stack ] on a platform: top at (%.4f %.4f %.4f) m/s, the platform under it at "
-      "(%.4f %.4f %.4f), deepest %.2e m\n",
-      v.x(), v.y(), v.z(), under.x(), under.y(), under.z(), deepest);
-  EXPECT_LT((v - under).norm(), 0.03);
-  EXPECT_LT(deepest, settings.linear_slop);
-}
-
-TEST(Stacks, AColumnRidesAConveyor) { expectColumnRides(Vec3(1.0, 0.0, 0.0), Vec3::Zero(), 0.0); }
-TEST(Stacks, AColumnRidesALift) { expectColumnRides(Vec3(0.0, 0.0, 1.0), Vec3::Zero(), 0.0); }
-TEST(Stacks, AColumnRidesATurntable) {
-  // 1 rad/s at 2 m: a centripetal 2 m/s^2, within friction's 0.5 g (it slips outward at 2.2 cm/s
-  // at 4 x 2).
-  expectColumnRides(Vec3::Zero(), Vec3(0.0, 0.0, 1.0), 2.0);
 }
 
 TEST(Stacks, HeavyCubesOnLightOnesStandAtOneSubstepOfOnePass) {
