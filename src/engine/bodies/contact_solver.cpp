@@ -609,8 +609,8 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
   for (std::size_t i = 0; i < n; ++i) {
     ContactConstraint& c = constraints[pass.top_down ? n - 1 - i : i];
     Sides s(c, bodies);
-    if (c.friction > 0.0) solveFriction(c, s);
     if (!c.impact) solveNormals(c, s, pass, inverse_h);
+    if (c.friction > 0.0) solveFriction(c, s);
   }
 }
 
@@ -627,8 +627,8 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     upper.twist_impulse = c.twist_impulse;
     Sides s(upper, bodies);
     takeSeparations(upper, s);
-    if (upper.friction > 0.0) solveFriction(upper, s);
     if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
+    if (upper.friction > 0.0) solveFriction(upper, s);
   }
 }
 

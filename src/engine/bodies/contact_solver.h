@@ -70,12 +70,7 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
 void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies);
 // One pass over the contacts; with use_bias the overlap is pushed out (softly, at most
 // max_push_speed), speculative gaps may close no faster than they can within h, and impacts are
-// resolved. Each contact's friction comes before its normal rows, so that non-penetration has
-// the last word: friction acts in the contact plane, away from the centres of mass, and turns
-// the bodies; the normal rows, solved together, then take out what that turning closes at the
-// points. (The other way round that closing was left for the next contact and the next step: a
-// column of 100 kg cubes on 1 kg ones at 1 substep of 1 pass grew it from round-off, 1.5 times a
-// step, until the column fell.)
+// resolved.
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
                    const ContactPass& pass);
 // Shock propagation (Guendelman, Bridson and Fedkiw 2003, here on velocities and split
@@ -85,9 +80,7 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
 // it, however far the passes were from converging: a pile of a hundred rows no longer sinks and
 // rocks row by row. These impulses act on the upper body alone and are not accumulated (the next
 // step warm starts from the passes' impulses): they correct what the passes left, which is zero
-// once they converge. Friction before the normal rows here too, and more so: this pass is the
-// last before the positions move, and friction solved after it turned each box by what the
-// positions then moved it into the one below (a resting pyramid 0.2 mm deep instead of 6 um).
+// once they converge.
 struct ShockRow {
   std::uint32_t constraint;       // the row in constraints
   ContactConstraint upper_alone;  // the same contact with its lower side held still
