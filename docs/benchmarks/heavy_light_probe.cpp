@@ -5,7 +5,7 @@
 //   g++ -std=c++17 -O2 -I include -I /usr/include/eigen3 docs/benchmarks/heavy_light_probe.cpp \
 //     -o /tmp/heavy_light_probe -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
-//   /tmp/heavy_light_probe 1 1   # substeps, iterations
+//   /tmp/heavy_light_probe 1 1 600   # substeps, iterations, frames
 #include <cstdio>
 #include <cstdlib>
 
@@ -21,11 +21,15 @@ int main(int argc, char** argv) {
   settings.substeps = argc > 1 ? atoi(argv[1]) : 1;
   settings.iterations = argc > 2 ? atoi(argv[2]) : 1;
   settings.sleep = false;
+  if (getenv("NOSHOCK")) settings.shock_propagation = false;
+  if (getenv("NOGUESS")) settings.guess_loads = false;
+  if (getenv("RELAX")) settings.relax_iterations = atoi(getenv("RELAX"));
   world.setBodySettings(settings);
   engine::PlaneCollider ground;
   ground.normal = Vec3::UnitZ();
   ground.offset = 0;
-  ground.material = {0, 0.5};
+  const double mu = getenv("MU") ? atof(getenv("MU")) : 0.5;
+  ground.material = {0, mu};
   world.addCollider(ground);
   engine::BodyId top;
   for (int k = 0; k < 10; ++k) {
@@ -34,13 +38,14 @@ int main(int argc, char** argv) {
     body.pose.position = Vec3(0, 0, 0.5 + k);
     engine::BodyShapeSpec shape;
     shape.geometry = engine::BoxShape{Vec3::Constant(0.5)};
-    shape.material = {0, 0.5};
+    shape.material = {0, mu};
     body.shapes = {shape};
     body.mass = k % 2 == 0 ? 1.0 : 100.0;
     top = *world.addBody(body);
   }
   const std::size_t i = *world.bodies().find(top);
-  for (int f = 1; f <= 600; ++f) {
+  const int frames = argc > 3 ? atoi(argv[3]) : 600;
+  for (int f = 1; f <= frames; ++f) {
     world.step();
     if (f % 30 == 0 || f < 6) {
       const auto& b = world.bodies();
