@@ -232,13 +232,16 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
 // The shock rows (contact_solver.h), bottom up as the constraints: contacts between two moving
 // bodies, one resting on the other (normal within 45 degrees of gravity's line), that carry a
 // load (warm started or guessed). Two bodies touching in flight, or held together by a joint,
-// carry none and are left to the passes.
+// carry none and are left to the passes. Each row's carrier is the body of infinite mass (a
+// kinematic one) its lower side rests on, directly or through the bodies below it, if any.
 void prepareShockRows(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.shock_rows.clear();
   const Vec3 up = -ctx.config.gravity;
   if (!ctx.body_settings->shock_propagation || up.norm() == 0.0) return;
   const Vec3 up_unit = up.normalized();
+  ws.carrier_of.assign(ws.solver.size(), kNoBody);
+  ws.carrier_center_of.resize(ws.solver.size());
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     const ContactConstraint& c = ws.constraints[r];
     if (c.a == kNoBody || c.b == kNoBody) continue;
@@ -248,11 +251,26 @@ void prepareShockRows(StepContext& ctx) {
     for (int k = 0; k < c.count; ++k) load += c.points[k].normal_impulse;
     if (load <= 0.0) continue;
     // n points from a to b: b rests on a when n points up.
-    ContactSides upper = ws.constraint_sides[r];
+    const ContactSides& sides = ws.constraint_sides[r];
+    ContactSides upper = sides;
     (vertical > 0.0 ? upper.a : upper.b) = kNoBody;
+    const auto lower = static_cast<std::size_t>(vertical > 0.0 ? sides.a : sides.b);
+    const auto above = static_cast<std::size_t>(vertical > 0.0 ? sides.b : sides.a);
+    const Vec3& lower_center = vertical > 0.0 ? sides.center_a : sides.center_b;
+    std::int32_t carrier = ws.carrier_of[lower];
+    Vec3 carrier_center = ws.carrier_center_of[lower];
+    if (ws.solver[lower].inverse_mass == 0.0) {
+      carrier = static_cast<std::int32_t>(lower);
+      carrier_center = lower_center;
+    }
+    if (ws.carrier_of[above] == kNoBody && carrier != kNoBody) {
+      ws.carrier_of[above] = carrier;
+      ws.carrier_center_of[above] = carrier_center;
+    }
     BodyContact& contact = ws.contacts[c.contact];
     ws.shock_rows.push_back(ShockRow{
-        r, prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone)});
+        r, prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone),
+        carrier, lower_center - carrier_center});
   }
 }
 

@@ -52,8 +52,10 @@ struct BodyWorkspace {
   Vec3Array particle_start;     // their positions when the step began
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
   std::vector<ContactConstraint> constraints;
-  std::vector<ContactSides> constraint_sides;                 // each constraint's sides as prepared
-  std::vector<ShockRow> shock_rows;                           // bottom up, as the constraints
+  std::vector<ContactSides> constraint_sides;  // each constraint's sides as prepared
+  std::vector<ShockRow> shock_rows;            // bottom up, as the constraints
+  std::vector<std::int32_t> carrier_of;  // per solver body: what carries its pile (shock rows)
+  std::vector<Vec3> carrier_center_of;
   std::vector<std::pair<Real, std::uint32_t>> contact_order;  // (height, contact) of the rows
   // The particle links (cables, rods) of the particles the body solver moves, and of the
   // particles linked to those: solved with the joints, so that a rope of particles holding a body

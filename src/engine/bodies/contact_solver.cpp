@@ -21,6 +21,7 @@ class Sides {
   Sides(const ContactConstraint& c, std::vector<SolverBody>& bodies)
       : a(c.a == kNoBody ? still_a_.emplace() : bodies[static_cast<std::size_t>(c.a)]),
         b(c.b == kNoBody ? still_b_.emplace() : bodies[static_cast<std::size_t>(c.b)]) {}
+  Sides(SolverBody& side_a, SolverBody& side_b) : a(side_a), b(side_b) {}
 
  private:
   std::optional<SolverBody> still_a_;
@@ -614,6 +615,17 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
   }
 }
 
+namespace {
+
+// The shock row's contact, with its lower side in s.
+void solveShock(ContactConstraint& upper, Sides& s, const ContactPass& pass, const Real inverse_h) {
+  takeSeparations(upper, s);
+  if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
+  if (upper.friction > 0.0) solveFriction(upper, s);
+}
+
+}  // namespace
+
 void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstraint>& constraints,
                     std::vector<SolverBody>& bodies, const ContactPass& pass) {
   const Real inverse_h = 1.0 / pass.h;
@@ -625,10 +637,25 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     upper.friction_impulse[0] = c.friction_impulse[0];
     upper.friction_impulse[1] = c.friction_impulse[1];
     upper.twist_impulse = c.twist_impulse;
-    Sides s(upper, bodies);
-    takeSeparations(upper, s);
-    if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
-    if (upper.friction > 0.0) solveFriction(upper, s);
+    if (row.carrier == kNoBody) {
+      Sides s(upper, bodies);
+      solveShock(upper, s, pass, inverse_h);
+      continue;
+    }
+    // The lower side moves with the carrier (taking no impulse) where the lower body is; its
+    // displacement since the step began is its own (the rows' geometry).
+    const bool lower_is_a = upper.a == kNoBody;
+    const SolverBody& carrier = bodies[static_cast<std::size_t>(row.carrier)];
+    SolverBody held = bodies[static_cast<std::size_t>(lower_is_a ? c.a : c.b)];
+    held.v = carrier.velocityAt(row.lower_from_carrier);
+    held.w = carrier.w;
+    held.pv = carrier.pseudoVelocityAt(row.lower_from_carrier);
+    held.pw = carrier.pw;
+    held.inverse_mass = 0.0;
+    held.inverse_inertia = Mat3::Zero();
+    SolverBody& moving = bodies[static_cast<std::size_t>(lower_is_a ? c.b : c.a)];
+    Sides s(lower_is_a ? held : moving, lower_is_a ? moving : held);
+    solveShock(upper, s, pass, inverse_h);
   }
 }
 

@@ -146,6 +146,53 @@ TEST(Stacks, TheTwentyPyramidStandsWithOnePass) {
   expectStands(s, "pyramid of 210, one pass");
 }
 
+// Three cubes, `radius` from the centre of a kinematic platform that moves at `speed` and turns
+// at `spin`: after 2 s the top cube moves with the platform's point under it, to 3 cm/s, and no
+// contact overlaps beyond the slop. The shock pass once held every lower body still (in the
+// ground's frame): on a belt at 1 m/s the column's top stayed under 0.01 m/s, on a lift at 1 m/s
+// its velocity stayed 0 and the push-out carried it up, 3 cm deep.
+void expectColumnRides(const Vec3& speed, const Vec3& spin, const Real radius) {
+  Structure s;
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(s.world.setBodySettings(settings));
+  BodySpec platform = body(box(Vec3(50.0, 50.0, 0.5)), 1.0, Vec3(0.0, 0.0, -0.5));
+  platform.type = BodyType::kKinematic;
+  platform.linear_velocity = speed;
+  platform.angular_velocity = spin;
+  const BodyId platform_id = *s.world.addBody(platform);
+  for (int k = 0; k < 3; ++k) {
+    s.boxes.push_back(
+        *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(radius, 0.0, 0.5 + k))));
+  }
+  for (int step = 0; step < 120; ++step) s.world.step();
+  const BodyStore& bodies = s.world.bodies();
+  const std::size_t top = *bodies.find(s.boxes.back());
+  const std::size_t base = *bodies.find(platform_id);
+  const Vec3 under =
+      bodies.linearVelocity(base) +
+      bodies.angularVelocity(base).cross(bodies.position(top) - bodies.position(base));
+  const Vec3 v = bodies.linearVelocity(top);
+  Real deepest = 0.0;
+  for (const BodyContactReport& contact : s.world.bodyContacts()) {
+    for (const auto& point : contact.points) deepest = std::max(deepest, -point.separation);
+  }
+  std::printf(
+      "[ stack ] on a platform: top at (%.4f %.4f %.4f) m/s, the platform under it at "
+      "(%.4f %.4f %.4f), deepest %.2e m\n",
+      v.x(), v.y(), v.z(), under.x(), under.y(), under.z(), deepest);
+  EXPECT_LT((v - under).norm(), 0.03);
+  EXPECT_LT(deepest, settings.linear_slop);
+}
+
+TEST(Stacks, AColumnRidesAConveyor) { expectColumnRides(Vec3(1.0, 0.0, 0.0), Vec3::Zero(), 0.0); }
+TEST(Stacks, AColumnRidesALift) { expectColumnRides(Vec3(0.0, 0.0, 1.0), Vec3::Zero(), 0.0); }
+TEST(Stacks, AColumnRidesATurntable) {
+  // 1 rad/s at 2 m: a centripetal 2 m/s^2, within friction's 0.5 g (it slips at 2.6 cm/s
+  // at 4 x 2).
+  expectColumnRides(Vec3::Zero(), Vec3(0.0, 0.0, 1.0), 2.0);
+}
+
 }  // namespace
 }  // namespace engine
 }  // namespace mass_aggregate_sim
