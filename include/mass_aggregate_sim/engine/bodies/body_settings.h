@@ -21,7 +21,8 @@ struct BodySettings {
   // New resting contacts start from the static load they carry (a guess the passes refine).
   bool guess_loads = true;
   // A last pass per substep over the contacts where one body rests on another, bottom up, with
-  // the lower body held still (shock propagation): tall piles stand with few passes.
+  // the lower body held still (shock propagation; still as the kinematic body the pile rests on
+  // moves, if any): tall piles stand with few passes.
   bool shock_propagation = true;
   // Contacts act as springs of this frequency (Hz) and damping ratio on overlap; capped at a
   // quarter of the substep rate. Joints likewise. A contact's overlap is pushed out by
