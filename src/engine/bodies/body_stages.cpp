@@ -241,7 +241,7 @@ void prepareShockRows(StepContext& ctx) {
   if (!ctx.body_settings->shock_propagation || up.norm() == 0.0) return;
   const Vec3 up_unit = up.normalized();
   ws.carrier_of.assign(ws.solver.size(), kNoBody);
-  ws.carrier_center_of.resize(ws.solver.size());
+  ws.carrier_center_of.assign(ws.solver.size(), Vec3::Zero());
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     const ContactConstraint& c = ws.constraints[r];
     if (c.a == kNoBody || c.b == kNoBody) continue;
