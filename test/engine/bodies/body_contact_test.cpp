@@ -22,14 +22,6 @@ Real normalForce(const World& world, const BodyId id) {
   return impulse / (world.config().dt / world.bodySettings().substeps);
 }
 
-Real maxOverlap(const World& world) {
-  Real worst = 0.0;
-  for (const BodyContactReport& c : world.bodyContacts()) {
-    for (const auto& p : c.points) worst = std::max(worst, -p.separation);
-  }
-  return worst;
-}
-
 TEST(BodyContact, ACubeRestsOnThePlane) {
   World world(config());
   addGround(world);

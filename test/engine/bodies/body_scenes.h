@@ -1,6 +1,7 @@
 #pragma once
 // Bodies the acceptance tests build: z up, g = 9.81, 60 Hz unless a test says otherwise.
 
+#include <algorithm>
 #include <cmath>
 
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -55,6 +56,15 @@ inline void addGround(World& world, const Material& material = {0.0, 0.5},
 
 inline Real angleBetween(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// The deepest overlap of any body contact point now (0 when none overlaps).
+inline Real maxOverlap(const World& world) {
+  Real worst = 0.0;
+  for (const BodyContactReport& c : world.bodyContacts()) {
+    for (const auto& p : c.points) worst = std::max(worst, -p.separation);
+  }
+  return worst;
 }
 
 }  // namespace test_bodies

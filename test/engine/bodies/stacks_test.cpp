@@ -112,10 +112,7 @@ TEST(Stacks, PyramidOfFiftyFallsAsleepAtTheDefaults) {
   expectStands(s, "pyramid of 1275");
   const BodyStore& bodies = s.world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) ASSERT_FALSE(bodies.awake(i)) << i;
-  Real deepest = 0.0;
-  for (const BodyContactReport& contact : s.world.bodyContacts()) {
-    for (const auto& point : contact.points) deepest = std::max(deepest, -point.separation);
-  }
+  const Real deepest = maxOverlap(s.world);
   EXPECT_LT(deepest, 1e-3);
 }
 
@@ -173,10 +170,7 @@ void expectColumnRides(const Vec3& speed, const Vec3& spin, const Real radius) {
       bodies.linearVelocity(base) +
       bodies.angularVelocity(base).cross(bodies.position(top) - bodies.position(base));
   const Vec3 v = bodies.linearVelocity(top);
-  Real deepest = 0.0;
-  for (const BodyContactReport& contact : s.world.bodyContacts()) {
-    for (const auto& point : contact.points) deepest = std::max(deepest, -point.separation);
-  }
+  const Real deepest = maxOverlap(s.world);
   std::printf(
       "[ stack ] on a platform: top at (%.4f %.4f %.4f) m/s, the platform under it at "
       "(%.4f %.4f %.4f), deepest %.2e m\n",
