@@ -430,7 +430,7 @@ void generateBodyContacts(StepContext& ctx) {
       heights[ws.first_particle + k] =
           up.dot(Vec3(x.col(static_cast<Eigen::Index>(ws.particle_of_solver[k]))));
     }
-    guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h);
+    guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h, ctx.dt);
   }
   prepareShockRows(ctx);
   prepareJoints(ctx);

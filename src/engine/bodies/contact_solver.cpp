@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "engine/bodies/point_block_inverse.h"
@@ -536,11 +537,12 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
 
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
-                       const Vec3& gravity, const Real h) {
+                       const Vec3& gravity, const Real h, const Real dt) {
   const Real g = gravity.norm();
   if (g == 0.0 || constraints.empty()) return;
   const Vec3 up = -gravity / g;
   const Real resting_speed = 2.0 * g * h;
+  const Real resting_gap = resting_speed * dt + 0.5 * g * dt * dt;
   // Per body: the contacts it rests on (as constraint index, and which side is below).
   struct Support {
     std::uint32_t constraint;
@@ -586,12 +588,14 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
         const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
         const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
         Real closing = 0.0;
+        Real gap = std::numeric_limits<Real>::infinity();
         for (int p = 0; p < c.count; ++p) {
           const ContactConstraintPoint& cp = c.points[p];
           closing = std::max(closing,
                              std::abs(c.normal.dot(b.velocityAt(cp.r_b) - a.velocityAt(cp.r_a))));
+          gap = std::min(gap, cp.separation);
         }
-        if (closing <= resting_speed) {
+        if (closing <= resting_speed && gap <= resting_gap) {
           for (int p = 0; p < c.count; ++p) {
             c.points[p].normal_impulse = share / static_cast<Real>(c.count);
           }
