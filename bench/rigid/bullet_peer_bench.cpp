@@ -9,7 +9,8 @@
 // 1 keeps Bullet's default (a body at rest for 2 s sleeps).
 //
 // Each case builds its scene and simulates 10 s untimed (their mean cost per frame is settle_ms;
-// the worst and mean deepest overlap over their last 3 s are late_max_pen_m and late_mean_pen_m),
+// the worst and mean deepest overlap over their last 3 s are late_max_pen_m and late_mean_pen_m,
+// the bodies that moved more than 1 mm and 1 cm over them late_moved_mm and late_moved_cm),
 // records the at-rest quality then (counters, rigid_report.h), and times a fixed number of further
 // frames: Time and CPU are per frame (1/60 s, all its substeps), one thread.
 #include <benchmark/benchmark.h>
@@ -141,6 +142,11 @@ class BulletWorld {
     return result;
   }
 
+  Eigen::Vector3d position(const std::size_t k) const {
+    const btVector3& p = bodies_[k]->getWorldTransform().getOrigin();
+    return Eigen::Vector3d(p.x(), p.y(), p.z());
+  }
+
   double deepestOverlap() const {
     double deepest = 0.0;
     for (int m = 0; m < dispatcher_.getNumManifolds(); ++m) {
@@ -196,7 +202,7 @@ void runScene(benchmark::State& state, const RigidScene& scene) {
                  (sleeping ? ", default deactivation" : ", deactivation off"));
 
   BulletWorld world(scene, substeps, sleeping);
-  const Settled settled = settle(world);
+  const Settled settled = settle(world, scene);
   const AtRest at_rest = world.atRest();
 
   for (auto _ : state) {

@@ -10,7 +10,8 @@
 //
 // Each case builds its scene and simulates 10 s untimed, recording the mean cost of a frame over
 // those 10 s (settle_ms: the falling, stacking and settling a user watches), the worst and mean
-// deepest overlap over their last 3 s (late_max_pen_m, late_mean_pen_m) and the at-rest quality
+// deepest overlap over their last 3 s (late_max_pen_m, late_mean_pen_m), how many bodies moved
+// more than 1 mm and 1 cm over those 3 s (late_moved_mm, late_moved_cm) and the at-rest quality
 // at their end (counters, rigid_report.h); then it times a fixed number of further frames: Time
 // and CPU are per frame, one thread.
 #include <benchmark/benchmark.h>
@@ -111,6 +112,11 @@ class EngineWorld {
     return result;
   }
 
+  Vec3 position(const std::size_t k) const {
+    const engine::BodyStore& bodies = world_.bodies();
+    return bodies.position(*bodies.find(ids_[k]));
+  }
+
   double deepestOverlap() const {
     double deepest = 0.0;
     for (const engine::BodyContactReport& contact : world_.bodyContacts()) {
@@ -132,7 +138,7 @@ void runScene(benchmark::State& state, const RigidScene& scene) {
   state.SetLabel(scene.name + (sleeping ? ", sleeping" : ", sleeping off"));
 
   EngineWorld world(scene, substeps, iterations, sleeping);
-  const Settled settled = settle(world);
+  const Settled settled = settle(world, scene);
   const AtRest at_rest = world.atRest();
 
   for (auto _ : state) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "rigid_scenes.h"
 
@@ -23,18 +24,27 @@ constexpr int kSettleFrames = 600;
 // are reported beside the last frame's.
 constexpr int kLateFrames = 180;
 
-// The settle: its frames' cost (stepping only, not the sampling) and the late overlaps (m).
+// The settle: its frames' cost (stepping only, not the sampling), the late overlaps (m) and how
+// many dynamic bodies moved more than 1 mm and 1 cm over those late frames (a pile at rest moves
+// none; one that creeps or slides moves many).
 struct Settled {
   double seconds = 0.0;
   double late_max_penetration = 0.0;
   double late_mean_penetration = 0.0;
+  int late_moved_mm = 0;
+  int late_moved_cm = 0;
 };
 
-// Steps `world` (stepFrame(), deepestOverlap()) through the settle frames.
+// Steps `world` (stepFrame(), deepestOverlap(), position(k) of the scene's body k) through the
+// settle frames.
 template <typename PeerWorld>
-Settled settle(PeerWorld& world) {
+Settled settle(PeerWorld& world, const RigidScene& scene) {
   Settled settled;
+  std::vector<Eigen::Vector3d> late_start;
   for (int frame = 0; frame < kSettleFrames; ++frame) {
+    if (frame == kSettleFrames - kLateFrames) {
+      for (std::size_t k = 0; k < scene.bodies.size(); ++k) late_start.push_back(world.position(k));
+    }
     const auto start = std::chrono::steady_clock::now();
     world.stepFrame();
     settled.seconds +=
@@ -44,6 +54,12 @@ Settled settle(PeerWorld& world) {
       settled.late_max_penetration = std::max(settled.late_max_penetration, deepest);
       settled.late_mean_penetration += deepest / kLateFrames;
     }
+  }
+  for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
+    if (scene.bodies[k].isFixed()) continue;
+    const double moved = (world.position(k) - late_start[k]).norm();
+    settled.late_moved_mm += moved > 1e-3 ? 1 : 0;
+    settled.late_moved_cm += moved > 1e-2 ? 1 : 0;
   }
   return settled;
 }
@@ -76,6 +92,8 @@ inline void reportAtRest(benchmark::State& state, const RigidScene& scene, const
   }
   state.counters["late_max_pen_m"] = settled.late_max_penetration;
   state.counters["late_mean_pen_m"] = settled.late_mean_penetration;
+  state.counters["late_moved_mm"] = settled.late_moved_mm;
+  state.counters["late_moved_cm"] = settled.late_moved_cm;
   state.counters["settle_ms"] = 1e3 * settled.seconds / kSettleFrames;
 }
 
