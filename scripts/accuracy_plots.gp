@@ -114,9 +114,9 @@ plot bw skip 1 using (tumble('energy_drift') ? $9 : NaN):(magnitude($8)) \
 
 # Against iterations: colour for substeps; solid, dashed, dotted for stiffness 1, 0.5, 2 times the
 # default (each capped at a quarter of the substep rate, so at 1 and 2 substeps some coincide).
-it_problems = "hinged_pendulum welded_pendulum welded_pendulum dropped_stack dropped_stack"
-it_metrics = "amplitude_change period_error anchor_drift top_drift top_creep"
-it_labels = "'|amplitude after 20 s / 5 deg - 1|' '|T / T_{exact} - 1|' 'largest hinge point drift [m]' 'top cube from where it should rest [m]' 'top cube moved from 2 s to 10 s [m]'"
+it_problems = "hinged_pendulum welded_pendulum welded_pendulum dropped_stack dropped_stack turned_stack"
+it_metrics = "amplitude_change period_error anchor_drift top_drift top_creep top_creep"
+it_labels = "'|amplitude after 20 s / 5 deg - 1|' '|T / T_{exact} - 1|' 'largest hinge point drift [m]' 'top cube from where it should rest [m]' 'top cube moved from 2 s to 10 s [m]' 'top cube moved from 2 s to 10 s [m]'"
 unset logscale x
 set format x '%g'
 set xrange [0.5:8.5]

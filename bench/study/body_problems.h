@@ -63,9 +63,11 @@ BodyProblem weldedPendulum();
 // intermediate axis, so it tumbles over and back), no gravity, 20 s: energy and L must hold.
 BodyProblem torqueFreeTumble();
 // Ten unit cubes on the ground, 10 s: placed touching (1 kg each); placed 1 cm apart, off-centre
-// and turned, falling into place; touching, alternately 1 and 100 kg. The top must not move.
+// and turned, falling into place; the same placed touching; touching, alternately 1 and 100 kg.
+// The top must not move.
 BodyProblem cubeStack();
 BodyProblem droppedStack();
+BodyProblem turnedStack();
 BodyProblem heavyLightStack();
 // A 1 kg unit cube dropped flat from 1 m onto the ground, restitution 0.5 on both: it leaves at
 // e sqrt(2 g h) = 2.215 m/s.

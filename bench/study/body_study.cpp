@@ -166,9 +166,9 @@ void recommendations(const std::vector<BodyProblem>& problems,
 }  // namespace
 
 void bodyStudy(const std::string& dir) {
-  const std::vector<BodyProblem> problems = {hingedPendulum(), weldedPendulum(), torqueFreeTumble(),
-                                             cubeStack(),      droppedStack(),   heavyLightStack(),
-                                             cubeBounce()};
+  const std::vector<BodyProblem> problems = {
+      hingedPendulum(), weldedPendulum(), torqueFreeTumble(), cubeStack(),
+      droppedStack(),   turnedStack(),    heavyLightStack(),  cubeBounce()};
   const std::vector<BodySample> samples = sweep(problems);
   describeProblems(problems, dir);
   writeSamples(problems, samples, dir);

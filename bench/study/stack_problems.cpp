@@ -82,6 +82,16 @@ BodyProblem droppedStack() {
                column);
 }
 
+BodyProblem turnedStack() {
+  Column column;
+  column.offset = 0.05;
+  column.yaw = 5.0 * M_PI / 180.0;
+  return stack("turned_stack",
+               "10 unit cubes placed touching, alternately 5 cm off-centre and turned 5 degrees, "
+               "10 s",
+               column);
+}
+
 BodyProblem heavyLightStack() {
   Column column;
   column.heavy_mass = 100.0;
