@@ -34,16 +34,17 @@ bool awakeBody(const BodyStore& bodies, const BodyId id) {
   return bodies.awake(bodies.denseIndexUnchecked(id));
 }
 
-// Carries the normal impulses of the old contact's points over to the new one's by feature id,
-// the manifold's friction whatever its points (a resting face whose clipped points change ids
-// from step to step keeps its grip; dropped then, it let the slope boxes of a tall pyramid turn
-// for seconds longer), and the coupled masses it kept inverted (prepareContact inverts them again
-// when they have changed).
-void carryImpulses(const BodyContact& old, BodyContact& contact) {
-  contact.coupled = old.coupled;
-  contact.upper_alone = old.upper_alone;
-  contact.friction_impulse = old.friction_impulse;
-  contact.twist_impulse = old.twist_impulse;
+// A pair's contact that lasts is the old one (the manifold's friction and twist whatever its
+// points: a resting face whose clipped points change ids from step to step keeps its grip, where
+// dropped it let the slope boxes of a tall pyramid turn for seconds longer; and the coupled masses
+// it kept inverted, which prepareContact inverts again when they have changed) with the new
+// manifold, whose points take the normal impulses of the old points with the same feature ids.
+void takeManifold(const BodyContact& old, const FoundContact& found, BodyContact& contact) {
+  contact.key = found.key;
+  contact.manifold = found.manifold;
+  contact.friction = found.friction;
+  contact.restitution = found.restitution;
+  contact.normal_impulses.fill(0.0);
   for (int k = 0; k < contact.manifold.count; ++k) {
     for (int j = 0; j < old.manifold.count; ++j) {
       if (old.manifold.points[j].id == contact.manifold.points[k].id) {
@@ -197,16 +198,11 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     return holds(ws.joined_bodies,
                  IdPair{std::min(a.packed(), b.packed()), std::max(a.packed(), b.packed())});
   };
-  std::vector<BodyContact>& found = ws.found;
+  std::vector<FoundContact>& found = ws.found;
   found.clear();
   const auto keep = [&](const ContactKey& key, const Manifold& manifold, const Material& material) {
     if (manifold.count == 0) return;
-    BodyContact contact;
-    contact.key = key;
-    contact.manifold = manifold;
-    contact.friction = material.friction;
-    contact.restitution = material.restitution;
-    found.push_back(contact);
+    found.push_back(FoundContact{key, manifold, material.friction, material.restitution});
   };
 
   // Shape pairs and shapes against bounded colliders, from the tree: every pair with an awake
@@ -309,27 +305,33 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     }
   }
 
-  // Warm starts: each new contact's points take the impulses of the old one's with the same
-  // feature ids (both lists sorted by key).
-  const auto by_key = [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; };
-  // Sorted through their keys (a contact is a few hundred bytes: moving keys is cheaper).
+  // Warm starts: the new contacts in key order, each taking over the old contact of its pair
+  // (both lists sorted by key). Sorted through their keys, and only the light found manifolds
+  // before that: a contact with its inverted masses is most of a kilobyte.
   std::vector<std::pair<ContactKey, std::uint32_t>>& keys = ws.keys;
   keys.clear();
   for (std::uint32_t i = 0; i < found.size(); ++i) keys.emplace_back(found[i].key, i);
   std::sort(keys.begin(), keys.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<BodyContact>& sorted = ws.sorted;
-  sorted.clear();
-  for (const auto& key : keys) sorted.push_back(found[key.second]);
-  found.swap(sorted);
+  std::vector<BodyContact>& next = ws.next_contacts;
+  next.clear();
   auto old = ws.contacts.begin();
-  for (BodyContact& contact : found) {
-    while (old != ws.contacts.end() && old->key < contact.key) ++old;
-    if (old != ws.contacts.end() && old->key == contact.key) carryImpulses(*old, contact);
+  for (const auto& [key, index] : keys) {
+    while (old != ws.contacts.end() && old->key < key) ++old;
+    const FoundContact& f = found[index];
+    if (old != ws.contacts.end() && old->key == key) {
+      takeManifold(*old, f, next.emplace_back(*old));
+    } else {
+      BodyContact& contact = next.emplace_back();
+      contact.key = f.key;
+      contact.manifold = f.manifold;
+      contact.friction = f.friction;
+      contact.restitution = f.restitution;
+    }
   }
 
   // Contacts where no side is awake stay as they were: nothing has moved them.
-  const std::size_t fresh = found.size();
+  const std::size_t fresh = next.size();
   for (const BodyContact& kept : ws.contacts) {
     if (kept.key.other == ContactOther::kParticle) continue;
     const BodyShape& a = bodies.shapes()[kept.key.shape];
@@ -338,11 +340,13 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(kept.key.b)];
       if (!b.live || awakeBody(bodies, b.body) || joinedBodies(a.body, b.body)) continue;
     }
-    found.push_back(kept);
+    next.push_back(kept);
   }
-  if (found.size() != fresh)
-    std::inplace_merge(found.begin(), found.begin() + fresh, found.end(), by_key);
-  ws.contacts.swap(found);
+  if (next.size() != fresh) {
+    std::inplace_merge(next.begin(), next.begin() + static_cast<std::ptrdiff_t>(fresh), next.end(),
+                       [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; });
+  }
+  ws.contacts.swap(next);
 }
 
 }  // namespace engine

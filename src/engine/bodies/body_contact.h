@@ -55,6 +55,14 @@ struct BodyContact {
   InvertedMass upper_alone;
 };
 
+// A manifold as the narrowphase finds it, before it takes over what its pair's contact carried.
+struct FoundContact {
+  ContactKey key;
+  Manifold manifold;
+  Real friction = 0.0;
+  Real restitution = 0.0;
+};
+
 // Where a manifold's friction acts: the centre of its points, and each point from it in the
 // contact plane (the normal part taken out).
 struct ContactPatch {

@@ -32,8 +32,8 @@ struct BodyWorkspace {
   std::uint64_t colliders_version = ~std::uint64_t{0};
   // Sorted by key; their impulses warm start the next step (state, hashed with the world).
   std::vector<BodyContact> contacts;
-  std::vector<BodyContact> found;
-  std::vector<BodyContact> sorted;
+  std::vector<FoundContact> found;
+  std::vector<BodyContact> next_contacts;
   std::vector<std::pair<ContactKey, std::uint32_t>> keys;
   std::vector<Real> travel;  // per body: how far its points may move this step
   // The ends of the joints that do not collide_connected, this step: (body, body) with the lower
