@@ -268,9 +268,12 @@ void prepareShockRows(StepContext& ctx) {
       ws.carrier_center_of[above] = carrier_center;
     }
     BodyContact& contact = ws.contacts[c.contact];
-    ws.shock_rows.push_back(ShockRow{
-        r, prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone),
-        carrier, lower_center - carrier_center});
+    ShockRow& row = ws.shock_rows.emplace_back();
+    row.constraint = r;
+    prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone,
+                   row.upper_alone);
+    row.carrier = carrier;
+    row.lower_from_carrier = lower_center - carrier_center;
   }
 }
 
@@ -412,9 +415,9 @@ void generateBodyContacts(StepContext& ctx) {
       if (k != kNoBody) ws.solver[static_cast<std::size_t>(k)].held = true;
     }
     const bool still = sides.a == kNoBody || sides.b == kNoBody;
-    ws.constraints.push_back(prepareContact(contact, static_cast<std::uint32_t>(c), sides,
-                                            ws.solver, contactSoftness(settings, ctx.h, still),
-                                            contact.coupled));
+    prepareContact(contact, static_cast<std::uint32_t>(c), sides, ws.solver,
+                   contactSoftness(settings, ctx.h, still), contact.coupled,
+                   ws.constraints.emplace_back());
     ws.constraint_sides.push_back(sides);
   }
   if (settings.guess_loads) {

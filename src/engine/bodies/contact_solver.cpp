@@ -404,10 +404,10 @@ void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1) {
   t1 = n.cross(t0);
 }
 
-ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t index,
-                                 const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                                 const Softness& softness, BodyContact::InvertedMass& inverted) {
-  ContactConstraint c;
+void prepareContact(const BodyContact& contact, const std::uint32_t index,
+                    const ContactSides& sides, const std::vector<SolverBody>& bodies,
+                    const Softness& softness, BodyContact::InvertedMass& inverted,
+                    ContactConstraint& c) {
   c.a = sides.a;
   c.b = sides.b;
   c.contact = index;
@@ -417,7 +417,7 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
   c.restitution = contact.restitution;
   c.softness = softness;
   c.count = contact.manifold.count;
-  const SolverBody still;
+  static const SolverBody still;
   const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
@@ -474,7 +474,6 @@ ContactConstraint prepareContact(const BodyContact& contact, const std::uint32_t
     c.normal_block.topLeftCorner(c.count, c.count) =
         inverted.inverse.topLeftCorner(c.count, c.count);
   }
-  return c;
 }
 
 void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {

@@ -32,12 +32,13 @@ struct ContactSides {
 // always gives the same basis), t1 = n x t0.
 void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1);
 
-// Reads the contact's manifold and carried impulses; keeps the coupled mass's pseudo-inverse in
-// `inverted` (one of the contact's) so that a resting contact whose mass has not changed is not
-// inverted again.
-ContactConstraint prepareContact(const BodyContact& contact, std::uint32_t index,
-                                 const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                                 const Softness& softness, BodyContact::InvertedMass& inverted);
+// Reads the contact's manifold and carried impulses into `c`, a default ContactConstraint made
+// where it is kept (a row is most of a kilobyte: built in place, it is not copied); keeps the
+// coupled mass's pseudo-inverse in `inverted` (one of the contact's) so that a resting contact
+// whose mass has not changed is not inverted again.
+void prepareContact(const BodyContact& contact, std::uint32_t index, const ContactSides& sides,
+                    const std::vector<SolverBody>& bodies, const Softness& softness,
+                    BodyContact::InvertedMass& inverted, ContactConstraint& c);
 struct ContactPass {
   Real h;
   bool use_bias;
