@@ -65,6 +65,15 @@ BodyProblem stack(const std::string& name, const std::string& description, const
   return p;
 }
 
+// Alternately 5 cm off-centre and turned 5 degrees, `gap` apart.
+Column turnedColumn(const Real gap) {
+  Column column;
+  column.gap = gap;
+  column.offset = 0.05;
+  column.yaw = 5.0 * M_PI / 180.0;
+  return column;
+}
+
 }  // namespace
 
 BodyProblem cubeStack() {
@@ -72,24 +81,17 @@ BodyProblem cubeStack() {
 }
 
 BodyProblem droppedStack() {
-  Column column;
-  column.gap = 0.01;
-  column.offset = 0.05;
-  column.yaw = 5.0 * M_PI / 180.0;
   return stack("dropped_stack",
                "10 unit cubes placed 1 cm apart, alternately 5 cm off-centre and turned 5 "
                "degrees, falling into place, 10 s",
-               column);
+               turnedColumn(0.01));
 }
 
 BodyProblem turnedStack() {
-  Column column;
-  column.offset = 0.05;
-  column.yaw = 5.0 * M_PI / 180.0;
   return stack("turned_stack",
                "10 unit cubes placed touching, alternately 5 cm off-centre and turned 5 degrees, "
                "10 s",
-               column);
+               turnedColumn(0.0));
 }
 
 BodyProblem heavyLightStack() {

@@ -34,16 +34,21 @@ bool awakeBody(const BodyStore& bodies, const BodyId id) {
   return bodies.awake(bodies.denseIndexUnchecked(id));
 }
 
+// The pair, manifold and material the narrowphase found.
+void setFound(const FoundContact& found, BodyContact& contact) {
+  contact.key = found.key;
+  contact.manifold = found.manifold;
+  contact.friction = found.friction;
+  contact.restitution = found.restitution;
+}
+
 // A pair's contact that lasts is the old one (the manifold's friction and twist whatever its
 // points: a resting face whose clipped points change ids from step to step keeps its grip, where
 // dropped it let the slope boxes of a tall pyramid turn for seconds longer; and the coupled masses
 // it kept inverted, which prepareContact inverts again when they have changed) with the new
 // manifold, whose points take the normal impulses of the old points with the same feature ids.
 void takeManifold(const BodyContact& old, const FoundContact& found, BodyContact& contact) {
-  contact.key = found.key;
-  contact.manifold = found.manifold;
-  contact.friction = found.friction;
-  contact.restitution = found.restitution;
+  setFound(found, contact);
   contact.normal_impulses.fill(0.0);
   for (int k = 0; k < contact.manifold.count; ++k) {
     for (int j = 0; j < old.manifold.count; ++j) {
@@ -322,11 +327,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     if (old != ws.contacts.end() && old->key == key) {
       takeManifold(*old, f, next.emplace_back(*old));
     } else {
-      BodyContact& contact = next.emplace_back();
-      contact.key = f.key;
-      contact.manifold = f.manifold;
-      contact.friction = f.friction;
-      contact.restitution = f.restitution;
+      setFound(f, next.emplace_back());
     }
   }
 
