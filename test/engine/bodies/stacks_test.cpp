@@ -20,12 +20,12 @@ struct Structure {
   std::vector<BodyId> boxes;
 };
 
-// n unit cubes of 1 kg in a column, touching.
-void stack(Structure& s, const int n) {
+// n unit cubes of 1 kg in a column, `gap` apart (touching by default).
+void stack(Structure& s, const int n, const Real gap = 0.0) {
   addGround(s.world);
   for (int k = 0; k < n; ++k) {
-    s.boxes.push_back(
-        *s.world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k))));
+    s.boxes.push_back(*s.world.addBody(
+        body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k * (1.0 + gap)))));
   }
 }
 
@@ -85,12 +85,8 @@ TEST(Stacks, TwentyCubesStandAwake) {
 // column up from below in flight (the top cube at 0.19 m/s after five steps instead of 0.82).
 TEST(Stacks, CubesStackedApartFallFreelyUntilTheyLand) {
   Structure s;
-  addGround(s.world);
   constexpr Real kGap = 0.01;
-  for (int k = 0; k < 10; ++k) {
-    s.boxes.push_back(*s.world.addBody(
-        body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5 + k * (1.0 + kGap)))));
-  }
+  stack(s, 10, kGap);
   const BodyStore& bodies = s.world.bodies();
   const Real g = -s.world.config().gravity.z();
   const Real dt = s.world.config().dt;
