@@ -433,7 +433,8 @@ void generateBodyContacts(StepContext& ctx) {
       heights[ws.first_particle + k] =
           up.dot(Vec3(x.col(static_cast<Eigen::Index>(ws.particle_of_solver[k]))));
     }
-    guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h, ctx.dt);
+    guessRestingLoads(ws.constraints, ws.solver, heights, ctx.config.gravity, ctx.h, ctx.dt,
+                      ws.resting_loads);
   }
   prepareShockRows(ctx);
   prepareJoints(ctx);

@@ -70,6 +70,7 @@ struct BodyWorkspace {
   };
   std::vector<LinkImpulse> link_impulses;
   std::vector<Real> heights;  // per solver body, along -gravity
+  RestingLoadBuffers resting_loads;
   // The force generators on bodies, this substep: per moving body (by solver body; empty without
   // generators) their force and torque about the centre of mass; the particles' external forces,
   // the user's of the step and theirs.

@@ -536,46 +536,62 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
 
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
-                       const Vec3& gravity, const Real h, const Real dt) {
+                       const Vec3& gravity, const Real h, const Real dt,
+                       RestingLoadBuffers& buffers) {
   const Real g = gravity.norm();
   if (g == 0.0 || constraints.empty()) return;
   const Vec3 up = -gravity / g;
   const Real resting_speed = 2.0 * g * h;
   const Real resting_gap = resting_speed * dt + 0.5 * g * dt * dt;
-  // Per body: the contacts it rests on (as constraint index, and which side is below).
-  struct Support {
-    std::uint32_t constraint;
-    std::int32_t below;
-  };
-  std::vector<std::vector<Support>> supports(bodies.size());
-  for (std::uint32_t i = 0; i < constraints.size(); ++i) {
+  // Per body the contacts it rests on, by a counting sort of the constraints (stable: each body's
+  // in constraint order).
+  std::vector<std::int32_t>& upper = buffers.upper;
+  std::vector<std::uint32_t>& first = buffers.first;
+  upper.assign(constraints.size(), kNoBody);
+  first.assign(bodies.size() + 1, 0);
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
     const ContactConstraint& c = constraints[i];
     const Real vertical = c.normal.dot(up);
     if (std::abs(vertical) < std::sqrt(0.5)) continue;
     // n points from a to b: down when a rests on b.
-    const std::int32_t upper = vertical < 0.0 ? c.a : c.b;
-    const std::int32_t lower = vertical < 0.0 ? c.b : c.a;
-    if (upper == kNoBody) continue;
-    supports[static_cast<std::size_t>(upper)].push_back(Support{i, lower});
+    upper[i] = vertical < 0.0 ? c.a : c.b;
+    if (upper[i] != kNoBody) ++first[static_cast<std::size_t>(upper[i]) + 1];
   }
-  std::vector<std::int32_t> order;
+  for (std::size_t k = 0; k < bodies.size(); ++k) first[k + 1] += first[k];
+  std::vector<RestingLoadBuffers::Support>& supports = buffers.supports;
+  supports.resize(first.back());
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    if (upper[i] == kNoBody) continue;
+    const ContactConstraint& c = constraints[i];
+    const std::int32_t lower = upper[i] == c.a ? c.b : c.a;
+    supports[first[static_cast<std::size_t>(upper[i])]++] =
+        RestingLoadBuffers::Support{static_cast<std::uint32_t>(i), lower};
+  }
+  // Each first[k] now ends body k's supports, where body k + 1's begin: shift them back.
+  for (std::size_t k = bodies.size(); k > 0; --k) first[k] = first[k - 1];
+  first[0] = 0;
+  std::vector<std::int32_t>& order = buffers.order;
+  order.clear();
   for (std::size_t k = 0; k < bodies.size(); ++k) {
-    if (!supports[k].empty() && bodies[k].inverse_mass > 0.0) {
+    if (first[k + 1] > first[k] && bodies[k].inverse_mass > 0.0) {
       order.push_back(static_cast<std::int32_t>(k));
     }
   }
   std::stable_sort(order.begin(), order.end(), [&](const std::int32_t x, const std::int32_t y) {
     return heights[static_cast<std::size_t>(x)] > heights[static_cast<std::size_t>(y)];
   });
-  std::vector<Real> load(bodies.size(), 0.0);
+  std::vector<Real>& load = buffers.load;
+  load.assign(bodies.size(), 0.0);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     if (bodies[k].inverse_mass > 0.0) load[k] = g * h / bodies[k].inverse_mass;
   }
   const SolverBody still;
   for (const std::int32_t k : order) {
-    const std::vector<Support>& below = supports[static_cast<std::size_t>(k)];
-    const Real share = load[static_cast<std::size_t>(k)] / static_cast<Real>(below.size());
-    for (const Support& support : below) {
+    const auto begin = first[static_cast<std::size_t>(k)];
+    const auto end = first[static_cast<std::size_t>(k) + 1];
+    const Real share = load[static_cast<std::size_t>(k)] / static_cast<Real>(end - begin);
+    for (std::uint32_t j = begin; j < end; ++j) {
+      const RestingLoadBuffers::Support& support = supports[j];
       ContactConstraint& c = constraints[support.constraint];
       Real carried = 0.0;
       bool fresh = true;

@@ -10,6 +10,7 @@
 // as they come, impacts pass along a row of touching-close bodies one by one (Newton's cradle), and
 // a face that lands flat bounces without turning.
 
+#include <cstdint>
 #include <vector>
 
 #include "engine/bodies/body_contact.h"
@@ -50,6 +51,21 @@ struct ContactPass {
   // from the top down.
   bool top_down;
 };
+// What guessRestingLoads works in, kept between steps to spare its allocations.
+struct RestingLoadBuffers {
+  // A contact a body rests on: the constraint, and which side is below.
+  struct Support {
+    std::uint32_t constraint;
+    std::int32_t below;
+  };
+  std::vector<std::int32_t> upper;  // per constraint: the body resting on it (kNoBody: none)
+  // Per solver body, its supports in constraint order: supports[first[k], first[k + 1]).
+  std::vector<std::uint32_t> first;
+  std::vector<Support> supports;
+  std::vector<std::int32_t> order;  // the bodies resting on something, highest first
+  std::vector<Real> load;           // per solver body: its weight and what rests on it (N s)
+};
+
 // A first guess for the impulses of new resting contacts: the static load each carries. Going
 // down from the highest body, each body's weight plus what rests on it is split evenly over the
 // contacts it rests on (a contact whose normal is within 45 degrees of gravity's line), and each
@@ -63,7 +79,7 @@ struct ContactPass {
 // the load down row by row.
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
-                       const Vec3& gravity, Real h, Real dt);
+                       const Vec3& gravity, Real h, Real dt, RestingLoadBuffers& buffers);
 
 // Resolves the impacts of the substep (restitution: contact_solver.h's top), then applies every
 // other contact's impulses of the last substep again, and takes each point's separation for the
