@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "engine/collision/narrowphase/any_shape.h"
+#include "engine/core/sort_runs.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -312,12 +313,12 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
 
   // Warm starts: the new contacts in key order, each taking over the old contact of its pair
   // (both lists sorted by key). Sorted through their keys, and only the light found manifolds
-  // before that: a contact with its inverted masses is most of a kilobyte.
+  // before that: a contact with its inverted masses is most of a kilobyte. The keys come in
+  // sorted runs: the tree's pairs, then each plane's (the particles' are not).
   std::vector<std::pair<ContactKey, std::uint32_t>>& keys = ws.keys;
   keys.clear();
   for (std::uint32_t i = 0; i < found.size(); ++i) keys.emplace_back(found[i].key, i);
-  std::sort(keys.begin(), keys.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  sortRuns(keys, [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<BodyContact>& next = ws.next_contacts;
   next.clear();
   auto old = ws.contacts.begin();
