@@ -1,6 +1,7 @@
 #include "engine/bodies/body_collision.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <type_traits>
 
@@ -48,13 +49,17 @@ void setFound(const FoundContact& found, BodyContact& contact) {
 // dropped it let the slope boxes of a tall pyramid turn for seconds longer; and the coupled masses
 // it kept inverted, which prepareContact inverts again when they have changed) with the new
 // manifold, whose points take the normal impulses of the old points with the same feature ids.
-void takeManifold(const BodyContact& old, const FoundContact& found, BodyContact& contact) {
+void takeManifold(const FoundContact& found, BodyContact& contact) {
+  const int old_count = contact.manifold.count;
+  std::array<std::uint32_t, Manifold::kMaxPoints> old_ids{};
+  for (int j = 0; j < old_count; ++j) old_ids[j] = contact.manifold.points[j].id;
+  const std::array<Real, Manifold::kMaxPoints> old_impulses = contact.normal_impulses;
   setFound(found, contact);
   contact.normal_impulses.fill(0.0);
   for (int k = 0; k < contact.manifold.count; ++k) {
-    for (int j = 0; j < old.manifold.count; ++j) {
-      if (old.manifold.points[j].id == contact.manifold.points[k].id) {
-        contact.normal_impulses[k] = old.normal_impulses[j];
+    for (int j = 0; j < old_count; ++j) {
+      if (old_ids[j] == contact.manifold.points[k].id) {
+        contact.normal_impulses[k] = old_impulses[j];
         break;
       }
     }
@@ -319,6 +324,15 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
   keys.clear();
   for (std::uint32_t i = 0; i < found.size(); ++i) keys.emplace_back(found[i].key, i);
   sortRuns(keys, [](const auto& x, const auto& y) { return x.first < y.first; });
+  // Every old contact found again (a pile at rest): each takes its manifold where it is, and
+  // none is kept below (a found contact has a side awake, a kept one none).
+  const auto same_key = [](const auto& k, const BodyContact& c) { return k.first == c.key; };
+  if (std::equal(keys.begin(), keys.end(), ws.contacts.begin(), ws.contacts.end(), same_key)) {
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      takeManifold(found[keys[i].second], ws.contacts[i]);
+    }
+    return;
+  }
   std::vector<BodyContact>& next = ws.next_contacts;
   next.clear();
   auto old = ws.contacts.begin();
@@ -326,7 +340,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     while (old != ws.contacts.end() && old->key < key) ++old;
     const FoundContact& f = found[index];
     if (old != ws.contacts.end() && old->key == key) {
-      takeManifold(*old, f, next.emplace_back(*old));
+      takeManifold(f, next.emplace_back(*old));
     } else {
       setFound(f, next.emplace_back());
     }
