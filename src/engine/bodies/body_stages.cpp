@@ -252,8 +252,6 @@ void prepareShockRows(StepContext& ctx) {
     if (load <= 0.0) continue;
     // n points from a to b: b rests on a when n points up.
     const ContactSides& sides = ws.constraint_sides[r];
-    ContactSides upper = sides;
-    (vertical > 0.0 ? upper.a : upper.b) = kNoBody;
     const auto lower = static_cast<std::size_t>(vertical > 0.0 ? sides.a : sides.b);
     const auto above = static_cast<std::size_t>(vertical > 0.0 ? sides.b : sides.a);
     const Vec3& lower_center = vertical > 0.0 ? sides.center_a : sides.center_b;
@@ -270,8 +268,7 @@ void prepareShockRows(StepContext& ctx) {
     BodyContact& contact = ws.contacts[c.contact];
     ShockRow& row = ws.shock_rows.emplace_back();
     row.constraint = r;
-    prepareContact(contact, c.contact, upper, ws.solver, c.softness, contact.upper_alone,
-                   row.upper_alone);
+    prepareHeldStill(c, vertical > 0.0, ws.solver, contact.upper_alone, row.upper_alone);
     row.carrier = carrier;
     row.lower_from_carrier = lower_center - carrier_center;
   }

@@ -404,37 +404,21 @@ void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1) {
   t1 = n.cross(t0);
 }
 
-void prepareContact(const BodyContact& contact, const std::uint32_t index,
-                    const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                    const Softness& softness, BodyContact::InvertedMass& inverted,
-                    ContactConstraint& c) {
-  c.a = sides.a;
-  c.b = sides.b;
-  c.contact = index;
-  c.normal = contact.manifold.normal;
-  tangentBasis(c.normal, c.tangent[0], c.tangent[1]);
-  c.friction = contact.friction;
-  c.restitution = contact.restitution;
-  c.softness = softness;
-  c.count = contact.manifold.count;
+namespace {
+
+// The terms of a row that depend on its sides' masses, from its geometry (normal, tangents,
+// anchors, patch centre, the sides' indices): the same geometry serves either side held still.
+void prepareMasses(const std::vector<SolverBody>& bodies, BodyContact::InvertedMass& inverted,
+                   ContactConstraint& c) {
   static const SolverBody still;
   const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
   const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
   c.inverse_mass_a = a.inverse_mass;
   c.inverse_mass_b = b.inverse_mass;
-  const ContactPatch patch = contactPatch(contact.manifold);
   for (int k = 0; k < c.count; ++k) {
-    const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
-    cp.r_a = mp.point - sides.center_a;
-    cp.r_b = mp.point - sides.center_b;
-    cp.separation = mp.separation;
     cp.normal_mass = effectiveMass(a, cp.r_a, b, cp.r_b, c.normal);
-    cp.normal_impulse = contact.normal_impulses[k];
-    cp.arm = patch.offsets[k].norm();
   }
-  c.center_a = patch.center - sides.center_a;
-  c.center_b = patch.center - sides.center_b;
   // K_t,ij = (m_a^-1 + m_b^-1) delta_ij + (c_a x t_i).I_a^-1 (c_a x t_j) + (c_b x t_i).I_b^-1 (...)
   Eigen::Matrix<Real, 3, 2> turn_a;
   Eigen::Matrix<Real, 3, 2> turn_b;
@@ -451,12 +435,11 @@ void prepareContact(const BodyContact& contact, const std::uint32_t index,
     c.friction_block << tangent_mass(1, 1), -tangent_mass(0, 1), -tangent_mass(1, 0),
         tangent_mass(0, 0);
     c.friction_block /= det;
+  } else {
+    c.friction_block.setZero();
   }
   const Real twist = c.normal.dot((a.inverse_inertia + b.inverse_inertia) * c.normal);
   c.twist_mass = twist > 0.0 ? 1.0 / twist : 0.0;
-  c.friction_impulse[0] = contact.friction_impulse.dot(c.tangent[0]);
-  c.friction_impulse[1] = contact.friction_impulse.dot(c.tangent[1]);
-  c.twist_impulse = contact.twist_impulse;
   if (c.count > 1) {
     const int all[Manifold::kMaxPoints] = {0, 1, 2, 3};
     const auto mass = coupledMass(c, a, b, all, c.count);
@@ -474,6 +457,47 @@ void prepareContact(const BodyContact& contact, const std::uint32_t index,
     c.normal_block.topLeftCorner(c.count, c.count) =
         inverted.inverse.topLeftCorner(c.count, c.count);
   }
+}
+
+}  // namespace
+
+void prepareContact(const BodyContact& contact, const std::uint32_t index,
+                    const ContactSides& sides, const std::vector<SolverBody>& bodies,
+                    const Softness& softness, BodyContact::InvertedMass& inverted,
+                    ContactConstraint& c) {
+  c.a = sides.a;
+  c.b = sides.b;
+  c.contact = index;
+  c.normal = contact.manifold.normal;
+  tangentBasis(c.normal, c.tangent[0], c.tangent[1]);
+  c.friction = contact.friction;
+  c.restitution = contact.restitution;
+  c.softness = softness;
+  c.count = contact.manifold.count;
+  const ContactPatch patch = contactPatch(contact.manifold);
+  for (int k = 0; k < c.count; ++k) {
+    const ManifoldPoint& mp = contact.manifold.points[k];
+    ContactConstraintPoint& cp = c.points[k];
+    cp.r_a = mp.point - sides.center_a;
+    cp.r_b = mp.point - sides.center_b;
+    cp.separation = mp.separation;
+    cp.normal_impulse = contact.normal_impulses[k];
+    cp.arm = patch.offsets[k].norm();
+  }
+  c.center_a = patch.center - sides.center_a;
+  c.center_b = patch.center - sides.center_b;
+  c.friction_impulse[0] = contact.friction_impulse.dot(c.tangent[0]);
+  c.friction_impulse[1] = contact.friction_impulse.dot(c.tangent[1]);
+  c.twist_impulse = contact.twist_impulse;
+  prepareMasses(bodies, inverted, c);
+}
+
+void prepareHeldStill(const ContactConstraint& c, const bool a_still,
+                      const std::vector<SolverBody>& bodies, BodyContact::InvertedMass& inverted,
+                      ContactConstraint& held) {
+  held = c;
+  (a_still ? held.a : held.b) = kNoBody;
+  prepareMasses(bodies, inverted, held);
 }
 
 void takeSeparations(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {

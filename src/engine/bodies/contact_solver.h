@@ -40,6 +40,11 @@ void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1);
 void prepareContact(const BodyContact& contact, std::uint32_t index, const ContactSides& sides,
                     const std::vector<SolverBody>& bodies, const Softness& softness,
                     BodyContact::InvertedMass& inverted, ContactConstraint& c);
+// The row of a prepared contact c with one side held still (taking no impulse): c's geometry and
+// impulses, its masses again (inverted kept in `inverted`, as prepareContact keeps its own).
+void prepareHeldStill(const ContactConstraint& c, bool a_still,
+                      const std::vector<SolverBody>& bodies, BodyContact::InvertedMass& inverted,
+                      ContactConstraint& held);
 struct ContactPass {
   Real h;
   bool use_bias;
