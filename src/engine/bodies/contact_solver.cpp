@@ -587,7 +587,7 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     if (upper[i] == kNoBody) continue;
     const ContactConstraint& c = constraints[i];
-    const std::int32_t lower = upper[i] == c.a ? c.b : c.a;
+    const std::int32_t lower = c.normal.dot(up) < 0.0 ? c.b : c.a;
     supports[first[static_cast<std::size_t>(upper[i])]++] =
         RestingLoadBuffers::Support{static_cast<std::uint32_t>(i), lower};
   }
