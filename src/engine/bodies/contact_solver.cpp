@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "engine/bodies/point_block_inverse.h"
 
@@ -567,28 +568,29 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
   const Vec3 up = -gravity / g;
   const Real resting_speed = 2.0 * g * h;
   const Real resting_gap = resting_speed * dt + 0.5 * g * dt * dt;
-  // Per body the contacts it rests on, by a counting sort of the constraints (stable: each body's
-  // in constraint order).
-  std::vector<std::int32_t>& upper = buffers.upper;
-  std::vector<std::uint32_t>& first = buffers.first;
-  upper.assign(constraints.size(), kNoBody);
-  first.assign(bodies.size() + 1, 0);
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
+  // The support a constraint gives: the body resting on it (kNoBody: none) and the side below.
+  const auto support = [&](const std::size_t i) {
     const ContactConstraint& c = constraints[i];
     const Real vertical = c.normal.dot(up);
-    if (std::abs(vertical) < std::sqrt(0.5)) continue;
+    if (std::abs(vertical) < std::sqrt(0.5)) return std::pair{kNoBody, kNoBody};
     // n points from a to b: down when a rests on b.
-    upper[i] = vertical < 0.0 ? c.a : c.b;
-    if (upper[i] != kNoBody) ++first[static_cast<std::size_t>(upper[i]) + 1];
+    return vertical < 0.0 ? std::pair{c.a, c.b} : std::pair{c.b, c.a};
+  };
+  // Per body the contacts it rests on, by a counting sort of the constraints (stable: each body's
+  // in constraint order).
+  std::vector<std::uint32_t>& first = buffers.first;
+  first.assign(bodies.size() + 1, 0);
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const std::int32_t upper = support(i).first;
+    if (upper != kNoBody) ++first[static_cast<std::size_t>(upper) + 1];
   }
   for (std::size_t k = 0; k < bodies.size(); ++k) first[k + 1] += first[k];
   std::vector<RestingLoadBuffers::Support>& supports = buffers.supports;
   supports.resize(first.back());
   for (std::size_t i = 0; i < constraints.size(); ++i) {
-    if (upper[i] == kNoBody) continue;
-    const ContactConstraint& c = constraints[i];
-    const std::int32_t lower = c.normal.dot(up) < 0.0 ? c.b : c.a;
-    supports[first[static_cast<std::size_t>(upper[i])]++] =
+    const auto [upper, lower] = support(i);
+    if (upper == kNoBody) continue;
+    supports[first[static_cast<std::size_t>(upper)]++] =
         RestingLoadBuffers::Support{static_cast<std::uint32_t>(i), lower};
   }
   // Each first[k] now ends body k's supports, where body k + 1's begin: shift them back.

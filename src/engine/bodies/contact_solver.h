@@ -63,7 +63,6 @@ struct RestingLoadBuffers {
     std::uint32_t constraint;
     std::int32_t below;
   };
-  std::vector<std::int32_t> upper;  // per constraint: the body resting on it (kNoBody: none)
   // Per solver body, its supports in constraint order: supports[first[k], first[k + 1]).
   std::vector<std::uint32_t> first;
   std::vector<Support> supports;
