@@ -226,6 +226,9 @@ void runs(benchmark::internal::Benchmark* b) {
 void BM_Bullet_RigidPyramid(benchmark::State& state) {
   runScene(state, pyramid(static_cast<int>(state.range(0))));
 }
+void BM_Bullet_PyramidAndRoller(benchmark::State& state) {
+  runScene(state, pyramidAndRoller(static_cast<int>(state.range(0))));
+}
 void BM_Bullet_RigidStack(benchmark::State& state) {
   runScene(state, stack(static_cast<int>(state.range(0))));
 }
@@ -238,6 +241,10 @@ void BM_Bullet_ParticleRain(benchmark::State& state) {
 
 BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>);
 BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<100, 60>);
+BENCHMARK(BM_Bullet_PyramidAndRoller)
+    ->Args({100, 4, 1})
+    ->Iterations(60)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<10, 600>);
 BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<20, 600>);
 BENCHMARK(BM_Bullet_RandomDrop)->Apply(runs<1000, 300>);

@@ -179,6 +179,9 @@ void dropRuns(benchmark::internal::Benchmark* b) {
 void BM_RigidPyramid(benchmark::State& state) {
   runScene(state, pyramid(static_cast<int>(state.range(0))));
 }
+void BM_RigidPyramidAndRoller(benchmark::State& state) {
+  runScene(state, pyramidAndRoller(static_cast<int>(state.range(0))));
+}
 void BM_RigidStack(benchmark::State& state) {
   runScene(state, stack(static_cast<int>(state.range(0))));
 }
@@ -191,6 +194,10 @@ void BM_RigidParticleRain(benchmark::State& state) {
 
 BENCHMARK(BM_RigidPyramid)->Apply(runs<20, 600>);
 BENCHMARK(BM_RigidPyramid)->Apply(pileRuns<100, 60>);
+BENCHMARK(BM_RigidPyramidAndRoller)
+    ->Args({100, 4, 1, 2})
+    ->Iterations(60)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RigidStack)->Apply(runs<10, 600>);
 BENCHMARK(BM_RigidStack)->Apply(runs<20, 600>);
 BENCHMARK(BM_RigidRandomDrop)->Apply(dropRuns<1000, 300>);

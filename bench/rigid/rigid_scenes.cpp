@@ -68,6 +68,23 @@ RigidScene pyramid(const int base) {
   return scene;
 }
 
+RigidScene pyramidAndRoller(const int base) {
+  constexpr double kRadius = 0.25;
+  constexpr double kSpeed = 2.0;
+  RigidScene scene = pyramid(base);
+  scene.name = "pyramid_and_roller/" + std::to_string(base);
+  BodySpec ball;
+  ball.shape = ShapeType::kSphere;
+  ball.radius = kRadius;
+  ball.mass = 1.0;
+  ball.position = Eigen::Vector3d(-(0.5 * base + 10.0), 3.0, kRadius);
+  ball.linear_velocity = Eigen::Vector3d(kSpeed, 0.0, 0.0);
+  // Rolling: the contact point still, v + w x (-r z) = 0.
+  ball.angular_velocity = Eigen::Vector3d(0.0, kSpeed / kRadius, 0.0);
+  scene.bodies.push_back(ball);
+  return scene;
+}
+
 RigidScene stack(const int n) {
   RigidScene scene;
   scene.name = "stack/" + std::to_string(n);

@@ -71,6 +71,11 @@ constexpr int kRainDefaultSpheres = 2000;
 // boxes; the top body is the single box of the last row.
 RigidScene pyramid(int base);
 
+// pyramid(base) and a ball (radius 0.25 m, 1 kg) rolling without slipping at 2 m/s along x on
+// the ground 3 m from it, from x = -(base / 2 + 10) m: with sleeping on, a pile that sleeps and
+// one body that keeps moving past it and touches nothing but the ground. Top body: the pyramid's.
+RigidScene pyramidAndRoller(int base);
+
 // n unit cubes of 1 kg in a column at x = y = 0, z = 0.5 + i, touching. Top body: the last.
 RigidScene stack(int n);
 
