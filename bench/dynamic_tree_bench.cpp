@@ -103,7 +103,7 @@ void BM_DynamicTreePairStep(benchmark::State& state) {
   PersistentPairs persistent;
   std::vector<ProxyPair> found;
   finder.findPairs(tree, proxies, acceptAll, found);
-  persistent.update(tree, found);
+  persistent.update(tree, found, proxies);
   std::vector<std::int32_t> moved;
   std::int64_t step = 0;
   std::int64_t reinserted = 0;
@@ -118,7 +118,7 @@ void BM_DynamicTreePairStep(benchmark::State& state) {
     }
     reinserted += static_cast<std::int64_t>(moved.size());
     finder.findPairs(tree, moved, acceptAll, found);
-    persistent.update(tree, found);
+    persistent.update(tree, found, moved);
     benchmark::DoNotOptimize(persistent.pairs().data());
   }
   state.counters["pairs"] = static_cast<double>(persistent.pairs().size());

@@ -36,6 +36,17 @@ bool awakeBody(const BodyStore& bodies, const BodyId id) {
   return bodies.awake(bodies.denseIndexUnchecked(id));
 }
 
+// A contact between live shapes none of whose sides is awake (never a particle's: those are
+// found again each step or end).
+bool restsAsleep(const BodyStore& bodies, const ContactKey& key) {
+  if (key.other == ContactOther::kParticle) return false;
+  const BodyShape& a = bodies.shapes()[key.shape];
+  if (!a.live || awakeBody(bodies, a.body)) return false;
+  if (key.other != ContactOther::kShape) return true;
+  const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(key.b)];
+  return b.live && !awakeBody(bodies, b.body);
+}
+
 // The pair, manifold and material the narrowphase found.
 void setFound(const FoundContact& found, BodyContact& contact) {
   contact.key = found.key;
@@ -140,10 +151,32 @@ Material combineMaterials(const Material& a, const Material& b) {
   return Material{0.5 * (a.restitution + b.restitution), std::sqrt(a.friction * b.friction)};
 }
 
+namespace {
+
+// Pairs that can never touch, whatever happens to their bodies: two colliders, two shapes of one
+// body. The rest of the filter (joints, sleep, body types) can change and is applied each step.
+bool mayEverTouch(const BodyStore& bodies, const std::uint64_t x, const std::uint64_t y) {
+  const ProxyKind kx = proxyKind(x);
+  const ProxyKind ky = proxyKind(y);
+  if (kx == ProxyKind::kCollider && ky == ProxyKind::kCollider) return false;
+  if (kx == ProxyKind::kShape && ky == ProxyKind::kShape) {
+    return bodies.shapes()[proxyIndex(x)].body != bodies.shapes()[proxyIndex(y)].body;
+  }
+  return true;
+}
+
+void dropProxy(BodyWorkspace& ws, const std::int32_t proxy) {
+  ws.proxy_pairs.removeProxy(proxy);
+  ws.tree.destroyProxy(proxy);
+}
+
+}  // namespace
+
 void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyWorkspace& ws) {
   const Real margin = scene.settings.speculative_distance;
+  ws.moved.clear();
   if (ws.colliders_version != scene.colliders_version) {
-    for (const std::int32_t proxy : ws.collider_proxies) ws.tree.destroyProxy(proxy);
+    for (const std::int32_t proxy : ws.collider_proxies) dropProxy(ws, proxy);
     ws.collider_proxies.clear();
     forEachCollider(
         scene.colliders, [&](const std::size_t kind, const std::size_t i, const auto& collider) {
@@ -152,10 +185,10 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
           if (!box) return;  // unbounded: met by every shape
           ws.collider_proxies.push_back(ws.tree.createProxy(
               box->grown(margin), proxyData(ProxyKind::kCollider, colliderIndex(kind, i))));
+          ws.moved.push_back(ws.collider_proxies.back());
         });
     ws.colliders_version = scene.colliders_version;
   }
-  ws.moved.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const bool awake = bodies.awake(i);
     for (const ShapeIndex s : bodies.shapesOf(i)) {
@@ -166,24 +199,31 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
       // A body that has diverged (the world reports it; its policy may let it go on) leaves the
       // tree, so it meets nothing, and comes back once its pose is finite again.
       if (!box.lower.allFinite() || !box.upper.allFinite() || !displacement.allFinite()) {
-        if (shape.proxy >= 0) ws.tree.destroyProxy(shape.proxy);
+        if (shape.proxy >= 0) dropProxy(ws, shape.proxy);
         shape.proxy = -1;
         continue;
       }
       if (shape.proxy < 0) {
         shape.proxy = ws.tree.createProxy(box, proxyData(ProxyKind::kShape, s), displacement);
-      } else {
-        ws.tree.moveProxy(shape.proxy, box, displacement);
+        ws.moved.push_back(shape.proxy);
+      } else if (ws.tree.moveProxy(shape.proxy, box, displacement)) {
+        ws.moved.push_back(shape.proxy);
       }
-      if (awake) ws.moved.push_back(shape.proxy);
     }
   }
+  // Only a stored box that changed can start or end an overlap: the pairs of the others stand.
+  if (ws.moved.empty()) return;
+  ws.finder.findPairs(
+      ws.tree, ws.moved,
+      [&](const std::uint64_t x, const std::uint64_t y) { return mayEverTouch(bodies, x, y); },
+      ws.pairs);
+  ws.proxy_pairs.update(ws.tree, ws.pairs, ws.moved);
 }
 
 void removeBodyProxies(BodyStore& bodies, const std::size_t dense, BodyWorkspace& ws) {
   for (const ShapeIndex s : bodies.shapesOf(dense)) {
     BodyShape& shape = bodies.shapes()[s];
-    if (shape.proxy >= 0) ws.tree.destroyProxy(shape.proxy);
+    if (shape.proxy >= 0) dropProxy(ws, shape.proxy);
     shape.proxy = -1;
   }
 }
@@ -216,33 +256,42 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     found.push_back(FoundContact{key, manifold, material.friction, material.restitution});
   };
 
-  // Shape pairs and shapes against bounded colliders, from the tree: every pair with an awake
-  // shape (the moved proxies).
-  ws.finder.findPairs(
-      ws.tree, ws.moved,
-      [&](const std::uint64_t x, const std::uint64_t y) {
-        const ProxyKind kx = proxyKind(x);
-        const ProxyKind ky = proxyKind(y);
-        if (kx == ProxyKind::kCollider && ky == ProxyKind::kCollider) return false;
-        if (kx == ProxyKind::kShape && ky == ProxyKind::kShape) {
-          const BodyShape& a = bodies.shapes()[proxyIndex(x)];
-          const BodyShape& b = bodies.shapes()[proxyIndex(y)];
-          if (a.body == b.body || joinedBodies(a.body, b.body)) return false;
-          const std::size_t ia = bodies.denseIndexUnchecked(a.body);
-          const std::size_t ib = bodies.denseIndexUnchecked(b.body);
-          // Two bodies that cannot move against each other never touch.
-          if (!bodies.dynamic(ia) && !bodies.dynamic(ib)) return false;
-          return bodies.awake(ia) || bodies.awake(ib);
-        }
-        const std::uint64_t shape = kx == ProxyKind::kShape ? x : y;
-        const BodyShape& s = bodies.shapes()[proxyIndex(shape)];
-        const std::size_t i = bodies.denseIndexUnchecked(s.body);
-        return bodies.awake(i) && bodies.dynamic(i);
-      },
-      ws.pairs);
-  for (const ProxyPair& pair : ws.pairs) {
+  // Shape pairs and shapes against bounded colliders, from the tree's overlapping boxes: every
+  // pair with an awake shape that may touch now.
+  const auto touchable = [&](const std::uint64_t x, const std::uint64_t y) {
+    if (proxyKind(x) == ProxyKind::kShape && proxyKind(y) == ProxyKind::kShape) {
+      const BodyShape& a = bodies.shapes()[proxyIndex(x)];
+      const BodyShape& b = bodies.shapes()[proxyIndex(y)];
+      if (joinedBodies(a.body, b.body)) return false;
+      const std::size_t ia = bodies.denseIndexUnchecked(a.body);
+      const std::size_t ib = bodies.denseIndexUnchecked(b.body);
+      // Two bodies that cannot move against each other never touch.
+      if (!bodies.dynamic(ia) && !bodies.dynamic(ib)) return false;
+      return bodies.awake(ia) || bodies.awake(ib);
+    }
+    const std::uint64_t shape = proxyKind(x) == ProxyKind::kShape ? x : y;
+    const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[proxyIndex(shape)].body);
+    return bodies.awake(i) && bodies.dynamic(i);
+  };
+  // A pair touches only with an awake shape: most pairs of a pile that mostly sleeps are passed
+  // over on two bytes.
+  std::vector<std::uint8_t>& awake_proxy = ws.awake_proxy;
+  awake_proxy.assign(static_cast<std::size_t>(ws.tree.idBound()), 0);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies.awake(i)) continue;
+    for (const ShapeIndex s : bodies.shapesOf(i)) {
+      const std::int32_t proxy = bodies.shapes()[s].proxy;
+      if (proxy >= 0) awake_proxy[static_cast<std::size_t>(proxy)] = 1;
+    }
+  }
+  for (const ProxyPair& pair : ws.proxy_pairs.pairs()) {
+    if (!awake_proxy[static_cast<std::size_t>(pair.a)] &&
+        !awake_proxy[static_cast<std::size_t>(pair.b)]) {
+      continue;
+    }
     const std::uint64_t x = ws.tree.userData(pair.a);
     const std::uint64_t y = ws.tree.userData(pair.b);
+    if (!touchable(x, y)) continue;
     if (proxyKind(x) == ProxyKind::kShape && proxyKind(y) == ProxyKind::kShape) {
       const auto sa = static_cast<ShapeIndex>(std::min(proxyIndex(x), proxyIndex(y)));
       const auto sb = static_cast<ShapeIndex>(std::max(proxyIndex(x), proxyIndex(y)));
@@ -324,12 +373,35 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
   keys.clear();
   for (std::uint32_t i = 0; i < found.size(); ++i) keys.emplace_back(found[i].key, i);
   sortRuns(keys, [](const auto& x, const auto& y) { return x.first < y.first; });
-  // Every old contact found again (a pile at rest): each takes its manifold where it is, and
-  // none is kept below (a found contact has a side awake, a kept one none).
-  const auto same_key = [](const auto& k, const BodyContact& c) { return k.first == c.key; };
-  if (std::equal(keys.begin(), keys.end(), ws.contacts.begin(), ws.contacts.end(), same_key)) {
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      takeManifold(found[keys[i].second], ws.contacts[i]);
+  // Contacts where no side is awake stay as they were: nothing has moved them.
+  const auto staysAsleep = [&](const BodyContact& kept) {
+    if (!restsAsleep(bodies, kept.key)) return false;
+    return kept.key.other != ContactOther::kShape ||
+           !joinedBodies(bodies.shapes()[kept.key.shape].body,
+                         bodies.shapes()[static_cast<ShapeIndex>(kept.key.b)].body);
+  };
+  // No contact begins or ends (a pile at rest, awake or partly asleep): every old contact is
+  // found again or stays asleep, and each found one takes its manifold where it is.
+  const auto foundAgain = [&](const std::size_t k, const BodyContact& c) {
+    return k < keys.size() && keys[k].first == c.key;
+  };
+  std::size_t k = 0;
+  bool in_place = true;
+  for (const BodyContact& c : ws.contacts) {
+    if (foundAgain(k, c)) {
+      ++k;
+    } else if (!staysAsleep(c)) {
+      in_place = false;
+      break;
+    }
+  }
+  if (in_place && k == keys.size()) {
+    ws.awake_contacts.clear();
+    k = 0;
+    for (std::uint32_t i = 0; i < ws.contacts.size(); ++i) {
+      if (!foundAgain(k, ws.contacts[i])) continue;
+      takeManifold(found[keys[k++].second], ws.contacts[i]);
+      ws.awake_contacts.push_back(i);
     }
     return;
   }
@@ -345,24 +417,23 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       setFound(f, next.emplace_back());
     }
   }
-
-  // Contacts where no side is awake stay as they were: nothing has moved them.
   const std::size_t fresh = next.size();
   for (const BodyContact& kept : ws.contacts) {
-    if (kept.key.other == ContactOther::kParticle) continue;
-    const BodyShape& a = bodies.shapes()[kept.key.shape];
-    if (!a.live || awakeBody(bodies, a.body)) continue;
-    if (kept.key.other == ContactOther::kShape) {
-      const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(kept.key.b)];
-      if (!b.live || awakeBody(bodies, b.body) || joinedBodies(a.body, b.body)) continue;
-    }
-    next.push_back(kept);
+    if (staysAsleep(kept)) next.push_back(kept);
   }
   if (next.size() != fresh) {
     std::inplace_merge(next.begin(), next.begin() + static_cast<std::ptrdiff_t>(fresh), next.end(),
                        [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; });
   }
   ws.contacts.swap(next);
+  listAwakeContacts(bodies, ws);
+}
+
+void listAwakeContacts(const BodyStore& bodies, BodyWorkspace& ws) {
+  ws.awake_contacts.clear();
+  for (std::uint32_t i = 0; i < ws.contacts.size(); ++i) {
+    if (!restsAsleep(bodies, ws.contacts[i].key)) ws.awake_contacts.push_back(i);
+  }
 }
 
 }  // namespace engine

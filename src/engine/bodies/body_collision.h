@@ -38,9 +38,11 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
 // Removes a body's shapes from the tree (before the store forgets them).
 void removeBodyProxies(BodyStore& bodies, std::size_t dense, BodyWorkspace& ws);
 // The step's contacts into ws.contacts (sorted), each point's impulses carried over by key and
-// feature id. Contacts where no side is awake are kept as they were. Two ends of a joint that
-// does not collide_connected never touch.
+// feature id. Contacts where no side is awake are kept as they were; the others are listed in
+// ws.awake_contacts. Two ends of a joint that does not collide_connected never touch.
 void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws);
+// ws.awake_contacts: the contacts with an awake side or a particle, as the bodies are now.
+void listAwakeContacts(const BodyStore& bodies, BodyWorkspace& ws);
 // Mean restitution and geometric-mean friction: the particles' rule, for every pair.
 Material combineMaterials(const Material& a, const Material& b);
 

@@ -349,6 +349,7 @@ void generateBodyContacts(StepContext& ctx) {
   // Nothing moves and no particle can wake anything: the contacts stay as they are, no row is
   // made (a sleeping pile costs next to nothing).
   if (ws.solver.empty() && ctx.particles.empty()) {
+    ws.awake_contacts.clear();
     ws.constraints.clear();
     ws.constraint_sides.clear();
     ws.shock_rows.clear();
@@ -361,6 +362,7 @@ void generateBodyContacts(StepContext& ctx) {
   findBodyContacts(collisionScene(ctx), ws);
   // A sleeping island touched by an awake body wakes now; its contacts are made next step.
   if (wakeTouchedIslands(bodies, ws, *ctx.joints)) {
+    listAwakeContacts(bodies, ws);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       if (!bodies.awake(i) || bodies.type(i) == BodyType::kFixed) continue;
       if (ws.solver_of_body[i] != kNoBody) continue;
@@ -378,11 +380,28 @@ void generateBodyContacts(StepContext& ctx) {
     center = bodies.position(i);
     return ws.solver_of_body[i];
   };
-  // The rows bottom up along gravity (by each contact's first point; ties in key order).
+  // The rows bottom up along gravity (by each contact's first point; ties in key order), of the
+  // contacts with a side that may move: the others of a pile that mostly sleeps are passed over.
+  const auto mayMove = [&](const ContactKey& key) {
+    const auto solverOf = [&](const ShapeIndex s) {
+      return ws.solver_of_body[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
+    };
+    if (solverOf(key.shape) != kNoBody) return true;
+    switch (key.other) {
+      case ContactOther::kShape:
+        return solverOf(static_cast<ShapeIndex>(key.b)) != kNoBody;
+      case ContactOther::kCollider:
+        return false;
+      case ContactOther::kParticle:
+        return true;
+    }
+    return true;
+  };
   std::vector<std::pair<Real, std::uint32_t>>& order = ws.contact_order;
   order.clear();
   const Vec3 up = -ctx.config.gravity;
-  for (std::uint32_t c = 0; c < ws.contacts.size(); ++c) {
+  for (const std::uint32_t c : ws.awake_contacts) {
+    if (!mayMove(ws.contacts[c].key)) continue;
     const Manifold& m = ws.contacts[c].manifold;
     order.emplace_back(m.count > 0 ? up.dot(m.points[0].point) : 0.0, c);
   }

@@ -25,13 +25,21 @@ struct BodyWorkspace {
 
   DynamicTree tree{kTreeMargin};
   PairFinder finder;
-  std::vector<ProxyPair> pairs;
+  // Every pair of overlapping stored boxes that may ever touch (mayEverTouch), kept from step to
+  // step: only the proxies whose boxes changed (moved) are queried.
+  PersistentPairs proxy_pairs;
+  std::vector<ProxyPair> pairs;           // the moved proxies' new pairs, this step
+  std::vector<std::uint8_t> awake_proxy;  // by proxy id: an awake body's shape, this step
   std::vector<std::int32_t> moved;
   // The static colliders other than planes, in the tree; remade when the colliders change.
   std::vector<std::int32_t> collider_proxies;
   std::uint64_t colliders_version = ~std::uint64_t{0};
   // Sorted by key; their impulses warm start the next step (state, hashed with the world).
   std::vector<BodyContact> contacts;
+  // Indices into contacts, ascending, of those with an awake side or a particle this step (the
+  // rest of a pile that mostly sleeps is passed over): made with the contacts, and again when
+  // islands wake.
+  std::vector<std::uint32_t> awake_contacts;
   std::vector<FoundContact> found;
   std::vector<BodyContact> next_contacts;
   std::vector<std::pair<ContactKey, std::uint32_t>> keys;

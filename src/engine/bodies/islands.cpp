@@ -8,17 +8,19 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-// Calls f(dense a, dense b) for every link of the body graph: shape contacts with a point, and
-// joints between two bodies.
+// Calls f(dense a, dense b) when contact c links two bodies: shapes touching with a point.
 template <typename F>
-void forEachLink(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, F&& f) {
-  for (const BodyContact& c : ws.contacts) {
-    if (c.key.other != ContactOther::kShape || c.manifold.count == 0) continue;
-    const BodyShape& a = bodies.shapes()[c.key.shape];
-    const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(c.key.b)];
-    if (!a.live || !b.live) continue;
-    f(bodies.denseIndexUnchecked(a.body), bodies.denseIndexUnchecked(b.body));
-  }
+void contactLink(const BodyStore& bodies, const BodyContact& c, F&& f) {
+  if (c.key.other != ContactOther::kShape || c.manifold.count == 0) return;
+  const BodyShape& a = bodies.shapes()[c.key.shape];
+  const BodyShape& b = bodies.shapes()[static_cast<ShapeIndex>(c.key.b)];
+  if (!a.live || !b.live) return;
+  f(bodies.denseIndexUnchecked(a.body), bodies.denseIndexUnchecked(b.body));
+}
+
+// Calls f(dense a, dense b) for every joint between two bodies.
+template <typename F>
+void jointLinks(const BodyStore& bodies, const Joints& joints, F&& f) {
   joints.forEach([&](const auto& kind) {
     for (const auto& joint : kind) {
       if (!joint.a.isBody() || !joint.b.isBody()) continue;
@@ -27,6 +29,22 @@ void forEachLink(const BodyStore& bodies, const BodyWorkspace& ws, const Joints&
       if (a && b) f(*a, *b);
     }
   });
+}
+
+// Every link of the body graph: shape contacts with a point, and joints between two bodies.
+template <typename F>
+void forEachLink(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, F&& f) {
+  for (const BodyContact& c : ws.contacts) contactLink(bodies, c, f);
+  jointLinks(bodies, joints, f);
+}
+
+// The links with an awake side (ws.awake_contacts, and the joints): the others join two sleeping
+// bodies, which neither wake anything nor change an awake island.
+template <typename F>
+void forEachAwakeLink(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                      F&& f) {
+  for (const std::uint32_t c : ws.awake_contacts) contactLink(bodies, ws.contacts[c], f);
+  jointLinks(bodies, joints, f);
 }
 
 class UnionFind {
@@ -86,7 +104,7 @@ void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints
 
 bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints) {
   std::vector<std::size_t> to_wake;
-  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+  forEachAwakeLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
     const bool moving_a = bodies.awake(a) && bodies.type(a) != BodyType::kFixed;
     const bool moving_b = bodies.awake(b) && bodies.type(b) != BodyType::kFixed;
     if (moving_a && bodies.dynamic(b) && !bodies.awake(b)) to_wake.push_back(b);
@@ -113,7 +131,7 @@ void updateSleep(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joint
   }
   if (!settings.sleep || !any_awake) return;
   UnionFind islands(n);
-  forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
+  forEachAwakeLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
     if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
     // Touching a moving kinematic body keeps an island awake.
     if (bodies.type(a) == BodyType::kKinematic || bodies.type(b) == BodyType::kKinematic) {

@@ -22,20 +22,25 @@ void PairFinder::finish(const std::vector<std::int32_t>& moved, std::vector<Prox
 }
 
 void PersistentPairs::update(const DynamicTree& tree, const std::vector<ProxyPair>& found,
+                             const std::vector<std::int32_t>& changed,
                              std::vector<ProxyPair>* ended) {
+  const auto bound = static_cast<std::size_t>(tree.idBound());
+  if (changed_.size() < bound) changed_.resize(bound, 0);
+  for (const std::int32_t p : changed) changed_[static_cast<std::size_t>(p)] = 1;
   merged_.clear();
   std::set_union(pairs_.begin(), pairs_.end(), found.begin(), found.end(),
                  std::back_inserter(merged_));
   pairs_.clear();
   for (const ProxyPair& pair : merged_) {
-    const bool live = tree.isProxy(pair.a) && tree.isProxy(pair.b) &&
-                      tree.fatAabb(pair.a).overlaps(tree.fatAabb(pair.b));
-    if (live) {
+    const bool tested =
+        changed_[static_cast<std::size_t>(pair.a)] || changed_[static_cast<std::size_t>(pair.b)];
+    if (!tested || tree.fatAabb(pair.a).overlaps(tree.fatAabb(pair.b))) {
       pairs_.push_back(pair);
     } else if (ended != nullptr) {
       ended->push_back(pair);
     }
   }
+  for (const std::int32_t p : changed) changed_[static_cast<std::size_t>(p)] = 0;
 }
 
 void PersistentPairs::removeProxy(const std::int32_t proxy, std::vector<ProxyPair>* ended) {

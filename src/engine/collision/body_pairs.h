@@ -40,16 +40,17 @@ class PairFinder {
 };
 
 // The pairs kept from step to step, sorted. Stored boxes change only when a proxy is created or
-// moveProxy returns true: with those proxies passed to PairFinder each step and what it finds to
-// update(), pairs() is every accepted pair of overlapping stored boxes. A kept pair is not
-// filtered again: when the filter's answer for it changes (a joint added), dropping it is the
+// moveProxy returns true: with those proxies passed to PairFinder each step and, with what it
+// finds, to update(), pairs() is every accepted pair of overlapping stored boxes. A kept pair is
+// not filtered again: when the filter's answer for it changes (a joint added), dropping it is the
 // caller's part.
 class PersistentPairs {
  public:
-  // Adds found (sorted, unique: PairFinder's output) and drops the pairs whose boxes no longer
-  // overlap or whose proxy is gone; those dropped are appended to ended when given.
+  // Adds found (sorted, unique: PairFinder's output) and drops the pairs of a proxy in changed
+  // (those whose stored boxes changed; repeats allowed) whose boxes no longer overlap; those
+  // dropped are appended to ended when given. The pairs of other proxies are kept untested.
   void update(const DynamicTree& tree, const std::vector<ProxyPair>& found,
-              std::vector<ProxyPair>* ended = nullptr);
+              const std::vector<std::int32_t>& changed, std::vector<ProxyPair>* ended = nullptr);
   // Drops the pairs holding proxy. Call before destroyProxy: the tree reuses the id.
   void removeProxy(std::int32_t proxy, std::vector<ProxyPair>* ended = nullptr);
   const std::vector<ProxyPair>& pairs() const { return pairs_; }
@@ -57,6 +58,7 @@ class PersistentPairs {
  private:
   std::vector<ProxyPair> pairs_;
   std::vector<ProxyPair> merged_;
+  std::vector<std::uint8_t> changed_;  // by proxy id, during update
 };
 
 template <typename Accept>

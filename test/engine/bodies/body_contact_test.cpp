@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "body_scenes.h"
 
@@ -366,6 +367,83 @@ TEST(BodyContact, ADivergedBodyLeavesTheBroadphaseAndComesBack) {
   ASSERT_TRUE(world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 1.7))));
   for (int step = 0; step < 30; ++step) world.step();
   EXPECT_EQ(touching(wild), 1);  // the box dropped on it lands on it
+}
+
+// The broadphase keeps its pairs from step to step and looks again only around the boxes that
+// changed: a collider added beside a body that has stopped moving must still be met, and one
+// removed must let go.
+TEST(BodyContact, AColliderAddedBesideARestingBodyIsMetAndRemovedLetsGo) {
+  World world(config());
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(world.setBodySettings(settings));
+  addGround(world);
+  const BodyId id = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5)));
+  for (int step = 0; step < 60; ++step) world.step();
+  const auto touchesCollider = [&](const ColliderId collider) {
+    for (const BodyContactReport& c : world.bodyContacts()) {
+      if (c.body == id && c.other == BodyContactReport::Other::kCollider &&
+          c.collider == collider && !c.points.empty()) {
+        return true;
+      }
+    }
+    return false;
+  };
+  BoxCollider wall;
+  wall.center = Vec3(0.6, 0.0, 0.5);  // its face 5 mm from the box's side
+  wall.half_extents = Vec3(0.095, 1.0, 1.0);
+  const ColliderId wall_id = *world.addCollider(wall);
+  world.step();
+  EXPECT_TRUE(touchesCollider(wall_id));
+  ASSERT_TRUE(world.removeCollider(wall_id));
+  world.step();
+  EXPECT_FALSE(touchesCollider(wall_id));
+  EXPECT_EQ(world.bodyContacts().size(), 1u);  // the ground
+}
+
+// Bodies removed and added in their places (the tree reuses the removed proxies' ids, the store
+// their shapes): every box of a row on the ground touches the ground and its neighbours, and no
+// contact holds a removed body.
+TEST(BodyContact, BodiesAddedWhereOthersWereRemovedMeetTheirNeighbours) {
+  World world(config());
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(world.setBodySettings(settings));
+  addGround(world);
+  constexpr int kBoxes = 12;
+  std::vector<BodyId> row;
+  for (int k = 0; k < kBoxes; ++k) {
+    row.push_back(*world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(k, 0.0, 0.5))));
+  }
+  for (int step = 0; step < 30; ++step) world.step();
+  std::vector<BodyId> removed;
+  for (int k = 1; k < kBoxes; k += 3) {
+    ASSERT_TRUE(world.removeBody(row[static_cast<std::size_t>(k)]));
+    removed.push_back(row[static_cast<std::size_t>(k)]);
+  }
+  world.step();
+  for (int k = 1; k < kBoxes; k += 3) {
+    row[static_cast<std::size_t>(k)] =
+        *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(k, 0.0, 0.5)));
+  }
+  for (int step = 0; step < 3; ++step) world.step();
+  std::vector<int> touching(kBoxes, 0);
+  for (const BodyContactReport& c : world.bodyContacts()) {
+    for (const BodyId gone : removed) {
+      EXPECT_NE(c.body, gone);
+      EXPECT_NE(c.other_body, gone);
+    }
+    if (c.points.empty()) continue;
+    for (int k = 0; k < kBoxes; ++k) {
+      const BodyId id = row[static_cast<std::size_t>(k)];
+      touching[static_cast<std::size_t>(k)] +=
+          (c.body == id ? 1 : 0) + (c.other_body == id ? 1 : 0);
+    }
+  }
+  for (int k = 0; k < kBoxes; ++k) {
+    const int neighbours = (k > 0 ? 1 : 0) + (k + 1 < kBoxes ? 1 : 0);
+    EXPECT_EQ(touching[static_cast<std::size_t>(k)], 1 + neighbours) << "box " << k;
+  }
 }
 
 // Continuous collision (issue 14): a 5 cm ball at 300 m/s crosses 1.25 m per substep, a 2 cm wall

@@ -462,7 +462,7 @@ TEST(BodyPairs, PersistentPairsEqualAllOverlappingPairs) {
   for (int step = 0; step < 30; ++step) {
     finder.findPairs(scene.tree, moved, acceptPair, found);
     const std::size_t ended_before = ended.size();
-    persistent.update(scene.tree, found, &ended);
+    persistent.update(scene.tree, found, moved, &ended);
     for (std::size_t e = ended_before; e < ended.size(); ++e) {
       EXPECT_FALSE(scene.tree.fatAabb(ended[e].a).overlaps(scene.tree.fatAabb(ended[e].b)));
     }
