@@ -249,6 +249,18 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     return holds(ws.joined_bodies,
                  IdPair{std::min(a.packed(), b.packed()), std::max(a.packed(), b.packed())});
   };
+  // Each shape's frame once a step, when a pair first needs it: a shape meets many candidates
+  // (a small sphere in a pile, dozens), and the narrowphase wants its rotation as a matrix.
+  ++ws.frame_step;
+  ws.shape_frames.resize(bodies.shapes().size());
+  ws.shape_frame_step.resize(bodies.shapes().size(), 0);
+  const auto frameOf = [&](const ShapeIndex s) -> const Frame& {
+    if (ws.shape_frame_step[s] != ws.frame_step) {
+      ws.shape_frames[s] = Frame(bodies.shapePose(s));
+      ws.shape_frame_step[s] = ws.frame_step;
+    }
+    return ws.shape_frames[s];
+  };
   std::vector<FoundContact>& found = ws.found;
   found.clear();
   const auto keep = [&](const ContactKey& key, const Manifold& manifold, const Material& material) {
@@ -298,8 +310,8 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       const BodyShape& a = bodies.shapes()[sa];
       const BodyShape& b = bodies.shapes()[sb];
       keep(ContactKey{ContactOther::kShape, sa, sb},
-           collideAny(a.geometry, Frame(bodies.shapePose(sa)), b.geometry,
-                      Frame(bodies.shapePose(sb)), speculative + travelOf(sa) + travelOf(sb)),
+           collideAny(a.geometry, frameOf(sa), b.geometry, frameOf(sb),
+                      speculative + travelOf(sa) + travelOf(sb)),
            combineMaterials(a.material, b.material));
       continue;
     }
@@ -310,8 +322,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     withCollider(scene.colliders, proxyIndex(collider_data), [&](const auto& collider) {
       using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
       Manifold manifold;
-      Kind::bodyContact(collider, shape.geometry, Frame(bodies.shapePose(s)),
-                        speculative + travelOf(s), manifold);
+      Kind::bodyContact(collider, shape.geometry, frameOf(s), speculative + travelOf(s), manifold);
       keep(ContactKey{ContactOther::kCollider, s, collider.id}, manifold,
            combineMaterials(shape.material, colliderMaterial(collider)));
     });
@@ -322,7 +333,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     if (!bodies.awake(i) || !bodies.dynamic(i)) continue;
     for (const ShapeIndex s : bodies.shapesOf(i)) {
       const BodyShape& shape = bodies.shapes()[s];
-      const Frame frame(bodies.shapePose(s));
+      const Frame& frame = frameOf(s);
       scene.colliders.forEach([&](const auto& array) {
         for (const auto& collider : array) {
           using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
@@ -357,7 +368,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
         const BodyShape& shape = bodies.shapes()[s];
         if (holds(ws.joined_particles, IdPair{shape.body.packed(), id.packed()})) return true;
         keep(ContactKey{ContactOther::kParticle, s, id.packed()},
-             collideAnyWith(shape.geometry, Frame(bodies.shapePose(s)), SphereShape{r},
+             collideAnyWith(shape.geometry, frameOf(s), SphereShape{r},
                             Frame(center, Mat3::Identity()), margin + travelOf(s)),
              combineMaterials(shape.material, scene.materials.of(id.index, particle_default)));
         return true;

@@ -44,6 +44,11 @@ struct BodyWorkspace {
   std::vector<BodyContact> next_contacts;
   std::vector<std::pair<ContactKey, std::uint32_t>> keys;
   std::vector<Real> travel;  // per body: how far its points may move this step
+  // Per shape: its frame, made in the step numbered shape_frame_step (the contacts' count of
+  // steps is frame_step).
+  std::vector<Frame> shape_frames;
+  std::vector<std::uint64_t> shape_frame_step;
+  std::uint64_t frame_step = 0;
   // The ends of the joints that do not collide_connected, this step: (body, body) with the lower
   // packed id first, and (body, particle), both as packed ids, sorted.
   std::vector<std::pair<std::uint64_t, std::uint64_t>> joined_bodies;
