@@ -360,7 +360,8 @@ void generateBodyContacts(StepContext& ctx) {
     return;
   }
   findBodyContacts(collisionScene(ctx), ws);
-  // A sleeping island touched by an awake body wakes now; its contacts are made next step.
+  // A sleeping island touched by an awake body wakes now: its kept contacts get rows this step
+  // (listed again here) and are found again from the next.
   if (wakeTouchedIslands(bodies, ws, *ctx.joints)) {
     listAwakeContacts(bodies, ws);
     for (std::size_t i = 0; i < bodies.size(); ++i) {

@@ -369,15 +369,21 @@ TEST(BodyContact, ADivergedBodyLeavesTheBroadphaseAndComesBack) {
   EXPECT_EQ(touching(wild), 1);  // the box dropped on it lands on it
 }
 
+// The ground, and bodies that never sleep (a body at rest keeps being stepped).
+World groundWithoutSleep() {
+  World world(config());
+  BodySettings settings;
+  settings.sleep = false;
+  EXPECT_TRUE(world.setBodySettings(settings));
+  addGround(world);
+  return world;
+}
+
 // The broadphase keeps its pairs from step to step and looks again only around the boxes that
 // changed: a collider added beside a body that has stopped moving must still be met, and one
 // removed must let go.
 TEST(BodyContact, AColliderAddedBesideARestingBodyIsMetAndRemovedLetsGo) {
-  World world(config());
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(world.setBodySettings(settings));
-  addGround(world);
+  World world = groundWithoutSleep();
   const BodyId id = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3(0.0, 0.0, 0.5)));
   for (int step = 0; step < 60; ++step) world.step();
   const auto touchesCollider = [&](const ColliderId collider) {
@@ -405,11 +411,7 @@ TEST(BodyContact, AColliderAddedBesideARestingBodyIsMetAndRemovedLetsGo) {
 // their shapes): every box of a row on the ground touches the ground and its neighbours, and no
 // contact holds a removed body.
 TEST(BodyContact, BodiesAddedWhereOthersWereRemovedMeetTheirNeighbours) {
-  World world(config());
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(world.setBodySettings(settings));
-  addGround(world);
+  World world = groundWithoutSleep();
   constexpr int kBoxes = 12;
   std::vector<BodyId> row;
   for (int k = 0; k < kBoxes; ++k) {
