@@ -436,6 +436,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     std::inplace_merge(next.begin(), next.begin() + static_cast<std::ptrdiff_t>(fresh), next.end(),
                        [](const BodyContact& p, const BodyContact& q) { return p.key < q.key; });
   }
+  ws.kept_masses.keepOnly(ws.contacts, next);
   ws.contacts.swap(next);
   listAwakeContacts(bodies, ws);
 }

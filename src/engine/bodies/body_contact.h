@@ -44,15 +44,21 @@ struct BodyContact {
   Real restitution = 0.0;
   // The points' coupled mass when last inverted, and its pseudo-inverse: a resting contact's
   // mass does not change from step to step, and inverting it is most of preparing the contact.
-  // One for both sides moving, one for the upper side alone (the shock pass).
+  // One for both sides moving, one for the upper side alone (the shock pass). Kept apart from
+  // the contact (KeptMassPool), so that a contact is light to copy and to scan.
   struct InvertedMass {
     Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints> mass =
         Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>::Zero();
     Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints> inverse =
         Eigen::Matrix<Real, Manifold::kMaxPoints, Manifold::kMaxPoints>::Zero();
   };
-  InvertedMass coupled;
-  InvertedMass upper_alone;
+  struct KeptMasses {
+    InvertedMass coupled;
+    InvertedMass upper_alone;
+  };
+  static constexpr std::uint32_t kNoKeptMasses = ~std::uint32_t{0};
+  // Its slot in the KeptMassPool, from the first time it has more than one point.
+  std::uint32_t kept_masses = kNoKeptMasses;
 };
 
 // A manifold as the narrowphase finds it, before it takes over what its pair's contact carried.

@@ -268,7 +268,8 @@ void prepareShockRows(StepContext& ctx) {
     BodyContact& contact = ws.contacts[c.contact];
     ShockRow& row = ws.shock_rows.emplace_back();
     row.constraint = r;
-    prepareHeldStill(c, vertical > 0.0, ws.solver, contact.upper_alone, row.upper_alone);
+    prepareHeldStill(c, vertical > 0.0, ws.solver, ws.kept_masses.of(contact).upper_alone,
+                     row.upper_alone);
     row.carrier = carrier;
     row.lower_from_carrier = lower_center - carrier_center;
   }
@@ -433,7 +434,7 @@ void generateBodyContacts(StepContext& ctx) {
     }
     const bool still = sides.a == kNoBody || sides.b == kNoBody;
     prepareContact(contact, static_cast<std::uint32_t>(c), sides, ws.solver,
-                   contactSoftness(settings, ctx.h, still), contact.coupled,
+                   contactSoftness(settings, ctx.h, still), ws.kept_masses.of(contact).coupled,
                    ws.constraints.emplace_back());
     ws.constraint_sides.push_back(sides);
   }

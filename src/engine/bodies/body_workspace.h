@@ -10,6 +10,7 @@
 #include "engine/bodies/contact_constraint.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/joint_rows.h"
+#include "engine/bodies/kept_mass_pool.h"
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
 #include "engine/collision/dynamic_tree.h"
@@ -36,6 +37,7 @@ struct BodyWorkspace {
   std::uint64_t colliders_version = ~std::uint64_t{0};
   // Sorted by key; their impulses warm start the next step (state, hashed with the world).
   std::vector<BodyContact> contacts;
+  KeptMassPool kept_masses;  // the contacts' (state, hashed with them)
   // Indices into contacts, ascending, of those with an awake side or a particle this step (the
   // rest of a pile that mostly sleeps is passed over): made with the contacts, and again when
   // islands wake.

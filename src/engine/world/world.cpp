@@ -441,7 +441,8 @@ std::uint64_t World::stateHash() const {
       hasher.add(c.twist_impulse);
       // The coupled masses a contact keeps inverted (their inverses follow from them) are
       // refreshed only when they change beyond rounding: state that steers the solve.
-      for (const BodyContact::InvertedMass* kept : {&c.coupled, &c.upper_alone}) {
+      const BodyContact::KeptMasses& masses = body_ws_->kept_masses.of(c);
+      for (const BodyContact::InvertedMass* kept : {&masses.coupled, &masses.upper_alone}) {
         for (int i = 0; i < c.manifold.count; ++i) {
           for (int j = 0; j < c.manifold.count; ++j) hasher.add(kept->mass(i, j));
         }

@@ -75,12 +75,14 @@ Status World::removeBody(const BodyId id) {
     const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
     wakeIsland(bodies_, ws, joints_, bodies_.denseIndexUnchecked(bodies_.shapes()[other].body));
   }
-  ws.contacts.erase(std::remove_if(ws.contacts.begin(), ws.contacts.end(),
-                                   [&](const BodyContact& c) {
-                                     return owned(c.key.shape) ||
-                                            (c.key.other == ContactOther::kShape &&
-                                             owned(static_cast<ShapeIndex>(c.key.b)));
-                                   }),
+  const auto gone = [&](const BodyContact& c) {
+    return owned(c.key.shape) ||
+           (c.key.other == ContactOther::kShape && owned(static_cast<ShapeIndex>(c.key.b)));
+  };
+  for (const BodyContact& c : ws.contacts) {
+    if (gone(c)) ws.kept_masses.giveBack(c);
+  }
+  ws.contacts.erase(std::remove_if(ws.contacts.begin(), ws.contacts.end(), gone),
                     ws.contacts.end());
   removeBodyProxies(bodies_, *dense, ws);
   return bodies_.remove(id);
