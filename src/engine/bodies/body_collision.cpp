@@ -189,6 +189,17 @@ void updateBodyProxies(const BodyCollisionScene& scene, BodyStore& bodies, BodyW
         });
     ws.colliders_version = scene.colliders_version;
   }
+  for (const BodyId id : ws.posed) {
+    const auto i = bodies.find(id);
+    if (!i) continue;  // removed since
+    for (const ShapeIndex s : bodies.shapesOf(*i)) {
+      const std::int32_t proxy = bodies.shapes()[s].proxy;
+      if (proxy >= 0 && ws.tree.moveProxy(proxy, shapeBox(bodies, s, margin), Vec3::Zero())) {
+        ws.moved.push_back(proxy);
+      }
+    }
+  }
+  ws.posed.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const bool awake = bodies.awake(i);
     for (const ShapeIndex s : bodies.shapesOf(i)) {

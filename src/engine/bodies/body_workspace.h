@@ -32,6 +32,9 @@ struct BodyWorkspace {
   std::vector<ProxyPair> pairs;           // the moved proxies' new pairs, this step
   std::vector<std::uint8_t> awake_proxy;  // by proxy id: an awake body's shape, this step
   std::vector<std::int32_t> moved;
+  // Bodies set to a new pose while not awake (fixed ones; a step never moves them): their proxies
+  // follow at the next pair stage.
+  std::vector<BodyId> posed;
   // The static colliders other than planes, in the tree; remade when the colliders change.
   std::vector<std::int32_t> collider_proxies;
   std::uint64_t colliders_version = ~std::uint64_t{0};

@@ -107,6 +107,7 @@ Status World::setBodyPose(const BodyId id, const Transform& pose) {
   bodies_.position(*dense) = mass_pose.position;
   bodies_.orientation(*dense) = mass_pose.rotation.normalized();
   bodies_.refreshWorldInertia(*dense);
+  if (!bodies_.awake(*dense)) body_ws_->posed.push_back(id);
   return Status::ok();
 }
 

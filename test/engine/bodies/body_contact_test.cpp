@@ -407,6 +407,26 @@ TEST(BodyContact, AColliderAddedBesideARestingBodyIsMetAndRemovedLetsGo) {
   EXPECT_EQ(world.bodyContacts().size(), 1u);  // the ground
 }
 
+// A fixed body set somewhere else (a platform or an obstacle moved by a request) is met where
+// it is now: a box dropped onto it lands on it, and nothing rests on where it was.
+TEST(BodyContact, AFixedBodySetElsewhereIsMetWhereItIsNow) {
+  World world = groundWithoutSleep();
+  BodySpec platform = body(box(Vec3(1.0, 1.0, 0.1)), 1.0, Vec3(0.0, 0.0, 1.0));
+  platform.type = BodyType::kFixed;
+  const BodyId platform_id = *world.addBody(platform);
+  for (int step = 0; step < 5; ++step) world.step();
+  ASSERT_TRUE(world.setBodyPose(platform_id, Transform{Vec3(5.0, 0.0, 1.0), Quat::Identity()}));
+  const BodyId dropped = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(5.0, 0.0, 1.6)));
+  const BodyId below_old =
+      *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.0, 0.0, 1.6)));
+  for (int step = 0; step < 120; ++step) world.step();
+  const auto height = [&](const BodyId id) {
+    return world.bodies().pose(*world.bodies().find(id)).position.z();
+  };
+  EXPECT_NEAR(height(dropped), 1.35, 0.01);    // on the platform: 1.0 + 0.1 + 0.25
+  EXPECT_NEAR(height(below_old), 0.25, 0.01);  // on the ground, through where it was
+}
+
 // Bodies removed and added in their places (the tree reuses the removed proxies' ids, the store
 // their shapes): every box of a row on the ground touches the ground and its neighbours, and no
 // contact holds a removed body.
