@@ -452,6 +452,19 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
   listAwakeContacts(bodies, ws);
 }
 
+std::vector<std::size_t> bodiesNear(const BodyStore& bodies, const BodyWorkspace& ws,
+                                    const Aabb& box) {
+  std::vector<std::size_t> near;
+  ws.tree.query(box, [&](const std::int32_t proxy) {
+    const std::uint64_t data = ws.tree.userData(proxy);
+    if (proxyKind(data) == ProxyKind::kShape) {
+      near.push_back(bodies.denseIndexUnchecked(bodies.shapes()[proxyIndex(data)].body));
+    }
+    return true;
+  });
+  return near;
+}
+
 void listAwakeContacts(const BodyStore& bodies, BodyWorkspace& ws) {
   ws.awake_contacts.clear();
   for (std::uint32_t i = 0; i < ws.contacts.size(); ++i) {

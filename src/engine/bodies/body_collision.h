@@ -5,6 +5,7 @@
 // with the impulses their points carried from the last step.
 
 #include <cstdint>
+#include <vector>
 
 #include "engine/bodies/body_workspace.h"
 #include "mass_aggregate_sim/engine/bodies/body_settings.h"
@@ -41,6 +42,10 @@ void removeBodyProxies(BodyStore& bodies, std::size_t dense, BodyWorkspace& ws);
 // feature id. Contacts where no side is awake are kept as they were; the others are listed in
 // ws.awake_contacts. Two ends of a joint that does not collide_connected never touch.
 void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws);
+// The dense indices of the bodies with a shape whose stored (fat) box overlaps box, as the tree
+// holds them; a body may come more than once.
+std::vector<std::size_t> bodiesNear(const BodyStore& bodies, const BodyWorkspace& ws,
+                                    const Aabb& box);
 // ws.awake_contacts: the contacts with an awake side or a particle, as the bodies are now.
 void listAwakeContacts(const BodyStore& bodies, BodyWorkspace& ws);
 // Mean restitution and geometric-mean friction: the particles' rule, for every pair.

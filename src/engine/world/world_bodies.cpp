@@ -37,6 +37,27 @@ Status checkSpec(const BodySpec& spec) {
 
 }  // namespace
 
+namespace {
+
+// Wakes the islands of whatever touches (has a contact with) dense body `body`.
+void wakeWhatTouches(BodyStore& bodies, BodyWorkspace& ws, const Joints& joints,
+                     const std::size_t body) {
+  const std::vector<ShapeIndex>& shapes = bodies.shapesOf(body);
+  const auto owned = [&](const ShapeIndex s) {
+    return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
+  };
+  for (const BodyContact& c : ws.contacts) {
+    if (c.key.other != ContactOther::kShape) continue;
+    const bool a = owned(c.key.shape);
+    const bool b = owned(static_cast<ShapeIndex>(c.key.b));
+    if (a == b) continue;
+    const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
+    wakeIsland(bodies, ws, joints, bodies.denseIndexUnchecked(bodies.shapes()[other].body));
+  }
+}
+
+}  // namespace
+
 Result<BodyId> World::addBody(const BodySpec& spec) {
   const Status valid = checkSpec(spec);
   if (!valid) return valid;
@@ -63,18 +84,11 @@ Status World::removeBody(const BodyId id) {
         kind.end());
   });
   // Its contacts go, and whatever rested on it wakes.
+  wakeWhatTouches(bodies_, ws, joints_, *dense);
   const std::vector<ShapeIndex>& shapes = bodies_.shapesOf(*dense);
   const auto owned = [&](const ShapeIndex s) {
     return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
   };
-  for (const BodyContact& c : ws.contacts) {
-    if (c.key.other != ContactOther::kShape) continue;
-    const bool a = owned(c.key.shape);
-    const bool b = owned(static_cast<ShapeIndex>(c.key.b));
-    if (a == b) continue;
-    const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
-    wakeIsland(bodies_, ws, joints_, bodies_.denseIndexUnchecked(bodies_.shapes()[other].body));
-  }
   const auto gone = [&](const BodyContact& c) {
     return owned(c.key.shape) ||
            (c.key.other == ContactOther::kShape && owned(static_cast<ShapeIndex>(c.key.b)));
@@ -107,7 +121,20 @@ Status World::setBodyPose(const BodyId id, const Transform& pose) {
   bodies_.position(*dense) = mass_pose.position;
   bodies_.orientation(*dense) = mass_pose.rotation.normalized();
   bodies_.refreshWorldInertia(*dense);
-  if (!bodies_.awake(*dense)) body_ws_->posed.push_back(id);
+  if (!bodies_.awake(*dense)) {
+    // A fixed body, which no step moves: what rested on it and what it now overlaps wake here,
+    // and its proxies follow at the next pair stage.
+    BodyWorkspace& ws = *body_ws_;
+    wakeWhatTouches(bodies_, ws, joints_, *dense);
+    for (const ShapeIndex s : bodies_.shapesOf(*dense)) {
+      const Aabb box = shapeBounds(bodies_.shapes()[s].geometry, Frame(bodies_.shapePose(s)))
+                           .grown(body_settings_.speculative_distance);
+      for (const std::size_t other : bodiesNear(bodies_, ws, box)) {
+        wakeIsland(bodies_, ws, joints_, other);
+      }
+    }
+    ws.posed.push_back(id);
+  }
   return Status::ok();
 }
 

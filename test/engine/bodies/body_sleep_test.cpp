@@ -284,6 +284,29 @@ TEST(BodySleep, AStackWokenByABodyLandingOnItHoldsFromThatStep) {
   EXPECT_LT(worst_drop, 2e-4);
 }
 
+// A fixed body moved by a request (no step moves it, so nothing else would wake what it leaves
+// or reaches): a box that slept on it wakes and falls, and a ball it now touches wakes.
+TEST(BodySleep, MovingAFixedBodyWakesWhatRestedOnItAndWhatItReaches) {
+  World world(config());
+  addGround(world);
+  BodySpec platform = body(box(Vec3(1.0, 1.0, 0.1)), 1.0, Vec3(0.0, 0.0, 1.0));
+  platform.type = BodyType::kFixed;
+  const BodyId platform_id = *world.addBody(platform);
+  const BodyId on_top = *world.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0.0, 0.0, 1.35)));
+  const BodyId ball = *world.addBody(body(sphere(0.2), 1.0, Vec3(5.0, 0.0, 0.2)));
+  for (int step = 0; step < 120 && !(asleep(world, on_top) && asleep(world, ball)); ++step) {
+    world.step();
+  }
+  ASSERT_TRUE(asleep(world, on_top));
+  ASSERT_TRUE(asleep(world, ball));
+  // Its lower face now 5 mm above the ball.
+  ASSERT_TRUE(world.setBodyPose(platform_id, Transform{Vec3(5.0, 0.0, 0.505), Quat::Identity()}));
+  EXPECT_FALSE(asleep(world, on_top));
+  EXPECT_FALSE(asleep(world, ball));
+  for (int step = 0; step < 60; ++step) world.step();
+  EXPECT_NEAR(world.bodies().pose(*world.bodies().find(on_top)).position.z(), 0.25, 0.01);
+}
+
 TEST(BodySleep, NewBodySettingsWakeEveryBodyAndTheSameOnesNone) {
   const SleepingScene s = sleepingScene();
   ASSERT_TRUE(asleep(s.world, s.lower) && asleep(s.world, s.upper) && asleep(s.world, s.apart));
