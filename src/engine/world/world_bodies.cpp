@@ -35,10 +35,6 @@ Status checkSpec(const BodySpec& spec) {
   return Status::ok();
 }
 
-}  // namespace
-
-namespace {
-
 // Wakes the islands of whatever touches (has a contact with) dense body `body`.
 void wakeWhatTouches(BodyStore& bodies, BodyWorkspace& ws, const Joints& joints,
                      const std::size_t body) {
