@@ -383,27 +383,11 @@ void generateBodyContacts(StepContext& ctx) {
     return ws.solver_of_body[i];
   };
   // The rows bottom up along gravity (by each contact's first point; ties in key order), of the
-  // contacts with a side that may move: the others of a pile that mostly sleeps are passed over.
-  const auto mayMove = [&](const ContactKey& key) {
-    const auto solverOf = [&](const ShapeIndex s) {
-      return ws.solver_of_body[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
-    };
-    if (solverOf(key.shape) != kNoBody) return true;
-    switch (key.other) {
-      case ContactOther::kShape:
-        return solverOf(static_cast<ShapeIndex>(key.b)) != kNoBody;
-      case ContactOther::kCollider:
-        return false;
-      case ContactOther::kParticle:
-        return true;
-    }
-    return true;
-  };
+  // contacts with an awake side: the others of a pile that mostly sleeps are passed over.
   std::vector<std::pair<Real, std::uint32_t>>& order = ws.contact_order;
   order.clear();
   const Vec3 up = -ctx.config.gravity;
   for (const std::uint32_t c : ws.awake_contacts) {
-    if (!mayMove(ws.contacts[c].key)) continue;
     const Manifold& m = ws.contacts[c].manifold;
     order.emplace_back(m.count > 0 ? up.dot(m.points[0].point) : 0.0, c);
   }
