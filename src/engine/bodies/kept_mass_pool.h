@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/bodies/body_contact.h"
+#include "engine/core/prefetch.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -28,6 +29,15 @@ class KeptMassPool {
   const BodyContact::KeptMasses& of(const BodyContact& contact) const {
     static const BodyContact::KeptMasses none;
     return contact.kept_masses == BodyContact::kNoKeptMasses ? none : slots_[contact.kept_masses];
+  }
+  // Asks for the lines of one of the contact's kept coupled masses (`which`: coupled or
+  // upper_alone), if it has a slot: the contacts are prepared in height order, not in the
+  // pool's, and each reads its kept mass first thing.
+  void prefetch(const BodyContact& contact,
+                BodyContact::InvertedMass BodyContact::KeptMasses::*which) const {
+    if (contact.kept_masses == BodyContact::kNoKeptMasses) return;
+    const BodyContact::InvertedMass& kept = slots_[contact.kept_masses].*which;
+    prefetchBytes(&kept.mass, sizeof(kept.mass));
   }
   // Gives back the slots of the contacts in `before` that `after` does not hold.
   void keepOnly(const std::vector<BodyContact>& before, const std::vector<BodyContact>& after) {
