@@ -527,6 +527,7 @@ void finaliseBodies(StepContext& ctx) {
   }
   // Bodies a fast particle touches stay awake.
   std::vector<std::uint8_t> busy(bodies.size(), 0);
+  std::vector<std::size_t> woken;
   const auto v = ctx.particles.velocities();
   for (const BodyContact& c : ws.contacts) {
     if (c.key.other != ContactOther::kParticle) continue;
@@ -536,8 +537,9 @@ void finaliseBodies(StepContext& ctx) {
     }
     const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[c.key.shape].body);
     busy[i] = 1;
-    if (!bodies.awake(i)) wakeIsland(bodies, ws, *ctx.joints, i);
+    if (!bodies.awake(i)) woken.push_back(i);
   }
+  wakeIslands(bodies, ws, *ctx.joints, woken);
   // Particles never sleep: a body joined to one stays awake with it.
   ctx.joints->forEach([&](const auto& kind) {
     for (const auto& joint : kind) {

@@ -1,6 +1,7 @@
 #include "engine/bodies/islands.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <vector>
 
@@ -86,20 +87,31 @@ std::size_t countIslands(const BodyStore& bodies, const BodyWorkspace& ws, const
   return count;
 }
 
-void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
-                const std::size_t body) {
-  if (!bodies.dynamic(body) || bodies.awake(body)) {
-    if (bodies.type(body) != BodyType::kFixed) bodies.setAwake(body, true);
-    return;
+void wakeIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                 const std::vector<std::size_t>& seeds) {
+  std::vector<std::size_t> sleeping;
+  for (const std::size_t body : seeds) {
+    if (bodies.dynamic(body) && !bodies.awake(body)) {
+      sleeping.push_back(body);
+    } else if (bodies.type(body) != BodyType::kFixed) {
+      bodies.setAwake(body, true);
+    }
   }
+  if (sleeping.empty()) return;
   UnionFind islands(bodies.size());
   forEachLink(bodies, ws, joints, [&](const std::size_t a, const std::size_t b) {
     if (joins(bodies, a) && joins(bodies, b)) islands.join(a, b);
   });
-  const std::size_t root = islands.find(body);
+  std::vector<std::uint8_t> woken(bodies.size(), 0);  // by island root
+  for (const std::size_t body : sleeping) woken[islands.find(body)] = 1;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies.dynamic(i) && islands.find(i) == root) bodies.setAwake(i, true);
+    if (bodies.dynamic(i) && woken[islands.find(i)]) bodies.setAwake(i, true);
   }
+}
+
+void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                const std::size_t body) {
+  wakeIslands(bodies, ws, joints, {body});
 }
 
 bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints) {
@@ -110,7 +122,7 @@ bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints
     if (moving_a && bodies.dynamic(b) && !bodies.awake(b)) to_wake.push_back(b);
     if (moving_b && bodies.dynamic(a) && !bodies.awake(a)) to_wake.push_back(a);
   });
-  for (const std::size_t i : to_wake) wakeIsland(bodies, ws, joints, i);
+  wakeIslands(bodies, ws, joints, to_wake);
   return !to_wake.empty();
 }
 

@@ -6,6 +6,7 @@
 // state is hashed like any other.
 
 #include <cstddef>
+#include <vector>
 
 #include "engine/bodies/body_workspace.h"
 #include "mass_aggregate_sim/engine/bodies/body_settings.h"
@@ -19,7 +20,13 @@ namespace engine {
 // step's touching shape contacts and the joints between two bodies; fixed and kinematic bodies
 // join none), awake or asleep; a dynamic body touching nothing is an island.
 std::size_t countIslands(const BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints);
-// Wakes the island of dense body `body`: every body reached through contacts and joints.
+// Wakes the islands of the dense bodies `seeds`: every body reached from one through contacts and
+// joints (a seed that is awake or not dynamic wakes alone). One pass over the links serves every
+// seed, so that a fixed floor moved under a thousand separate resting boxes wakes them at the cost
+// of one island, not a thousand.
+void wakeIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints,
+                 const std::vector<std::size_t>& seeds);
+// The island of dense body `body` alone.
 void wakeIsland(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints, std::size_t body);
 // Wakes the sleeping islands an awake body touches or is joined to; true when any woke.
 bool wakeTouchedIslands(BodyStore& bodies, const BodyWorkspace& ws, const Joints& joints);

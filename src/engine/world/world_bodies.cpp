@@ -35,21 +35,23 @@ Status checkSpec(const BodySpec& spec) {
   return Status::ok();
 }
 
-// Wakes the islands of whatever touches (has a contact with) dense body `body`.
-void wakeWhatTouches(BodyStore& bodies, BodyWorkspace& ws, const Joints& joints,
-                     const std::size_t body) {
+// The dense bodies that touch (have a contact with) dense body `body`.
+std::vector<std::size_t> whatTouches(const BodyStore& bodies, const BodyWorkspace& ws,
+                                     const std::size_t body) {
   const std::vector<ShapeIndex>& shapes = bodies.shapesOf(body);
   const auto owned = [&](const ShapeIndex s) {
     return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
   };
+  std::vector<std::size_t> touching;
   for (const BodyContact& c : ws.contacts) {
     if (c.key.other != ContactOther::kShape) continue;
     const bool a = owned(c.key.shape);
     const bool b = owned(static_cast<ShapeIndex>(c.key.b));
     if (a == b) continue;
     const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
-    wakeIsland(bodies, ws, joints, bodies.denseIndexUnchecked(bodies.shapes()[other].body));
+    touching.push_back(bodies.denseIndexUnchecked(bodies.shapes()[other].body));
   }
+  return touching;
 }
 
 }  // namespace
@@ -70,17 +72,23 @@ Status World::removeBody(const BodyId id) {
   BodyWorkspace& ws = *body_ws_;
   wakeIsland(bodies_, ws, joints_, *dense);
   removeBodyGeneratorsOf(id);
+  // Its joints go, and what they held wakes (a fixed hub's spokes are islands apart).
+  std::vector<BodyId> joined;
   joints_.forEach([&](auto& kind) {
     for (const auto& joint : kind) {
-      if (joint.a.body == id || joint.b.body == id) wakeJointEnds(joint.a, joint.b);
+      if (joint.a.body != id && joint.b.body != id) continue;
+      for (const JointEnd* end : {&joint.a, &joint.b}) {
+        if (end->isBody()) joined.push_back(end->body);
+      }
     }
     kind.erase(
         std::remove_if(kind.begin(), kind.end(),
                        [&](const auto& joint) { return joint.a.body == id || joint.b.body == id; }),
         kind.end());
   });
+  wakeBodies(joined);
   // Its contacts go, and whatever rested on it wakes.
-  wakeWhatTouches(bodies_, ws, joints_, *dense);
+  wakeIslands(bodies_, ws, joints_, whatTouches(bodies_, ws, *dense));
   const std::vector<ShapeIndex>& shapes = bodies_.shapesOf(*dense);
   const auto owned = [&](const ShapeIndex s) {
     return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
@@ -121,14 +129,14 @@ Status World::setBodyPose(const BodyId id, const Transform& pose) {
     // A fixed body, which no step moves: what rested on it and what it now overlaps wake here,
     // and its proxies follow at the next pair stage.
     BodyWorkspace& ws = *body_ws_;
-    wakeWhatTouches(bodies_, ws, joints_, *dense);
+    std::vector<std::size_t> woken = whatTouches(bodies_, ws, *dense);
     for (const ShapeIndex s : bodies_.shapesOf(*dense)) {
       const Aabb box = shapeBounds(bodies_.shapes()[s].geometry, Frame(bodies_.shapePose(s)))
                            .grown(body_settings_.speculative_distance);
-      for (const std::size_t other : bodiesNear(bodies_, ws, box)) {
-        wakeIsland(bodies_, ws, joints_, other);
-      }
+      const std::vector<std::size_t> near = bodiesNear(bodies_, ws, box);
+      woken.insert(woken.end(), near.begin(), near.end());
     }
+    wakeIslands(bodies_, ws, joints_, woken);
     ws.posed.push_back(id);
   }
   return Status::ok();
@@ -310,18 +318,20 @@ Status World::checkJointEnds(const JointEnd& a, const JointEnd& b, const bool tu
 }
 
 void World::wakeJointEnds(const JointEnd& a, const JointEnd& b) {
+  std::vector<BodyId> ends;
   for (const JointEnd* end : {&a, &b}) {
-    if (!end->isBody()) continue;
-    const auto dense = bodies_.find(end->body);
-    if (dense) wakeIsland(bodies_, *body_ws_, joints_, *dense);
+    if (end->isBody()) ends.push_back(end->body);
   }
+  wakeBodies(ends);
 }
 
 void World::wakeBodies(const std::vector<BodyId>& bodies) {
+  std::vector<std::size_t> seeds;
   for (const BodyId body : bodies) {
     const auto dense = bodies_.find(body);
-    if (dense) wakeIsland(bodies_, *body_ws_, joints_, *dense);
+    if (dense) seeds.push_back(*dense);
   }
+  wakeIslands(bodies_, *body_ws_, joints_, seeds);
 }
 
 Status World::removeJoint(const JointId id) {

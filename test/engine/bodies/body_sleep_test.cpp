@@ -307,6 +307,59 @@ TEST(BodySleep, MovingAFixedBodyWakesWhatRestedOnItAndWhatItReaches) {
   EXPECT_NEAR(world.bodies().pose(*world.bodies().find(on_top)).position.z(), 0.25, 0.01);
 }
 
+// A fixed floor box under separate islands (three cubes apart, each its own island, and a stack
+// of two), a cube asleep on the ground beside it, and two cubes hanging on ball joints from a fixed
+// hub (two islands: a fixed body joins none). Tilting the floor wakes every island on it in one
+// request and not the cube beside it; removing the floor does the same; removing the hub wakes
+// both that hung from it and nothing else.
+TEST(BodySleep, AFixedBodyMovedOrRemovedWakesEveryIslandItHeldAndNoOther) {
+  World world(config());
+  addGround(world);
+  BodySpec floor = body(box(Vec3(4.0, 1.0, 0.1)), 1.0, Vec3(0.0, 0.0, 0.1));
+  floor.type = BodyType::kFixed;
+  const BodyId floor_id = *world.addBody(floor);
+  const Vec3 half = Vec3::Constant(0.5);
+  std::vector<BodyId> on_floor;
+  for (const Real x : {-3.0, -1.0, 1.0}) {
+    on_floor.push_back(*world.addBody(body(box(half), 1.0, Vec3(x, 0.0, 0.7))));
+  }
+  on_floor.push_back(*world.addBody(body(box(half), 1.0, Vec3(3.0, 0.0, 0.7))));
+  on_floor.push_back(*world.addBody(body(box(half), 1.0, Vec3(3.0, 0.0, 1.7))));
+  const BodyId beside = *world.addBody(body(box(half), 1.0, Vec3(0.0, 3.0, 0.5)));
+  BodySpec hub = body(sphere(0.1), 1.0, Vec3(0.0, -5.0, 3.0));
+  hub.type = BodyType::kFixed;
+  const BodyId hub_id = *world.addBody(hub);
+  std::vector<BodyId> hanging;
+  for (const Real x : {-0.5, 0.5}) {
+    hanging.push_back(*world.addBody(body(sphere(0.1), 1.0, Vec3(x, -5.0, 2.0))));
+    BallJoint joint;
+    joint.a = JointEnd::onBody(hub_id, Vec3(x, 0.0, 0.0));
+    joint.b = JointEnd::onBody(hanging.back(), Vec3(0.0, 0.0, 1.0));
+    ASSERT_TRUE(world.addJoint(joint));
+  }
+  for (int step = 0; step < 240; ++step) world.step();
+  ASSERT_EQ(world.bodyIslandCount(), 7u);  // 3 cubes, the stack, the cube beside, the 2 hanging
+  for (const BodyId id : on_floor) ASSERT_TRUE(asleep(world, id));
+  ASSERT_TRUE(asleep(world, beside));
+  for (const BodyId id : hanging) ASSERT_TRUE(asleep(world, id));
+
+  World tilted = world;
+  const Quat tilt(Eigen::AngleAxis<Real>(0.01, Vec3::UnitX()));
+  ASSERT_TRUE(tilted.setBodyPose(floor_id, Transform{Vec3(0.0, 0.0, 0.1), tilt}));
+  World removed = world;
+  ASSERT_TRUE(removed.removeBody(floor_id));
+  for (const World* w : {&tilted, &removed}) {
+    for (const BodyId id : on_floor) EXPECT_FALSE(asleep(*w, id));
+    EXPECT_TRUE(asleep(*w, beside));
+    for (const BodyId id : hanging) EXPECT_TRUE(asleep(*w, id));
+  }
+  World unhung = world;
+  ASSERT_TRUE(unhung.removeBody(hub_id));
+  for (const BodyId id : hanging) EXPECT_FALSE(asleep(unhung, id));
+  for (const BodyId id : on_floor) EXPECT_TRUE(asleep(unhung, id));
+  EXPECT_TRUE(asleep(unhung, beside));
+}
+
 TEST(BodySleep, NewBodySettingsWakeEveryBodyAndTheSameOnesNone) {
   const SleepingScene s = sleepingScene();
   ASSERT_TRUE(asleep(s.world, s.lower) && asleep(s.world, s.upper) && asleep(s.world, s.apart));
