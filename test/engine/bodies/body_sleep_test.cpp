@@ -308,7 +308,7 @@ TEST(BodySleep, MovingAFixedBodyWakesWhatRestedOnItAndWhatItReaches) {
 }
 
 // A fixed floor box under separate islands (three cubes apart, each its own island, and a stack
-// of two), a cube asleep on the ground beside it, and two cubes hanging on ball joints from a fixed
+// of two), a cube asleep on the ground beside it, and two balls hanging on ball joints from a fixed
 // hub (two islands: a fixed body joins none). Tilting the floor wakes every island on it in one
 // request and not the cube beside it; removing the floor does the same; removing the hub wakes
 // both that hung from it and nothing else.
