@@ -2,7 +2,9 @@
 // one wakes what it touches.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
+#include <vector>
 
 #include "engine/bodies/body_collision.h"
 #include "engine/bodies/body_workspace.h"
@@ -35,18 +37,19 @@ Status checkSpec(const BodySpec& spec) {
   return Status::ok();
 }
 
+bool isAmong(const ShapeIndex s, const std::vector<ShapeIndex>& shapes) {
+  return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
+}
+
 // The dense bodies that touch (have a contact with) dense body `body`.
 std::vector<std::size_t> whatTouches(const BodyStore& bodies, const BodyWorkspace& ws,
                                      const std::size_t body) {
   const std::vector<ShapeIndex>& shapes = bodies.shapesOf(body);
-  const auto owned = [&](const ShapeIndex s) {
-    return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
-  };
   std::vector<std::size_t> touching;
   for (const BodyContact& c : ws.contacts) {
     if (c.key.other != ContactOther::kShape) continue;
-    const bool a = owned(c.key.shape);
-    const bool b = owned(static_cast<ShapeIndex>(c.key.b));
+    const bool a = isAmong(c.key.shape, shapes);
+    const bool b = isAmong(static_cast<ShapeIndex>(c.key.b), shapes);
     if (a == b) continue;
     const ShapeIndex other = a ? static_cast<ShapeIndex>(c.key.b) : c.key.shape;
     touching.push_back(bodies.denseIndexUnchecked(bodies.shapes()[other].body));
@@ -70,15 +73,18 @@ Status World::removeBody(const BodyId id) {
   const auto dense = bodies_.find(id);
   if (!dense) return Status::error("body: " + bodies_.describeInvalid(id));
   BodyWorkspace& ws = *body_ws_;
-  wakeIsland(bodies_, ws, joints_, *dense);
   removeBodyGeneratorsOf(id);
-  // Its joints go, and what they held wakes (a fixed hub's spokes are islands apart).
-  std::vector<BodyId> joined;
+  // It, what rested on it and what its joints held (a fixed hub's spokes are islands apart)
+  // wake, in one pass over the links that remain: its island without its joints is split only
+  // between itself and the bodies they held.
+  std::vector<std::size_t> woken = whatTouches(bodies_, ws, *dense);
+  woken.push_back(*dense);
   joints_.forEach([&](auto& kind) {
     for (const auto& joint : kind) {
       if (joint.a.body != id && joint.b.body != id) continue;
       for (const JointEnd* end : {&joint.a, &joint.b}) {
-        if (end->isBody()) joined.push_back(end->body);
+        const auto held = end->isBody() ? bodies_.find(end->body) : std::nullopt;
+        if (held) woken.push_back(*held);
       }
     }
     kind.erase(
@@ -86,16 +92,12 @@ Status World::removeBody(const BodyId id) {
                        [&](const auto& joint) { return joint.a.body == id || joint.b.body == id; }),
         kind.end());
   });
-  wakeBodies(joined);
-  // Its contacts go, and whatever rested on it wakes.
-  wakeIslands(bodies_, ws, joints_, whatTouches(bodies_, ws, *dense));
+  wakeIslands(bodies_, ws, joints_, woken);
+  // Its contacts go.
   const std::vector<ShapeIndex>& shapes = bodies_.shapesOf(*dense);
-  const auto owned = [&](const ShapeIndex s) {
-    return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
-  };
   const auto gone = [&](const BodyContact& c) {
-    return owned(c.key.shape) ||
-           (c.key.other == ContactOther::kShape && owned(static_cast<ShapeIndex>(c.key.b)));
+    return isAmong(c.key.shape, shapes) || (c.key.other == ContactOther::kShape &&
+                                            isAmong(static_cast<ShapeIndex>(c.key.b), shapes));
   };
   for (const BodyContact& c : ws.contacts) {
     if (gone(c)) ws.kept_masses.giveBack(c);
