@@ -17,6 +17,10 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
+// How far ahead of the row being prepared its contact's kept masses are asked for (rows), and
+// twice as far the contact itself (generateBodyContacts).
+constexpr std::size_t kPrefetchAhead = 4;
+
 BodyCollisionScene collisionScene(const StepContext& ctx) {
   return BodyCollisionScene{*ctx.bodies,        ctx.colliders,  ctx.colliders_version,
                             ctx.particles,      ctx.collisions, ctx.materials,
@@ -243,10 +247,9 @@ void prepareShockRows(StepContext& ctx) {
   const Vec3 up_unit = up.normalized();
   ws.carrier_of.assign(ws.solver.size(), kNoBody);
   ws.carrier_center_of.assign(ws.solver.size(), Vec3::Zero());
-  constexpr std::uint32_t kAhead = 4;  // as generateBodyContacts prefetches
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
-    if (r + kAhead < ws.constraints.size()) {
-      ws.kept_masses.prefetch(ws.contacts[ws.constraints[r + kAhead].contact],
+    if (r + kPrefetchAhead < ws.constraints.size()) {
+      ws.kept_masses.prefetch(ws.contacts[ws.constraints[r + kPrefetchAhead].contact],
                               &BodyContact::KeptMasses::upper_alone);
     }
     const ContactConstraint& c = ws.constraints[r];
@@ -402,15 +405,14 @@ void generateBodyContacts(StepContext& ctx) {
   ws.constraint_sides.clear();
   // Each contact reads its kept masses, 512 bytes in a pool apart from it; in a pile a few
   // thousand contacts wide they are out of the cache: ask for a contact's while preparing the
-  // one kAhead before it in the order, and for the contact itself (its slot's index is in it)
-  // twice as far ahead.
-  constexpr std::size_t kAhead = 4;
+  // one kPrefetchAhead before it in the order, and for the contact itself (its slot's index is in
+  // it) twice as far ahead.
   for (std::size_t i = 0; i < order.size(); ++i) {
-    if (i + 2 * kAhead < order.size()) {
-      prefetchBytes(&ws.contacts[order[i + 2 * kAhead].second], sizeof(BodyContact));
+    if (i + 2 * kPrefetchAhead < order.size()) {
+      prefetchBytes(&ws.contacts[order[i + 2 * kPrefetchAhead].second], sizeof(BodyContact));
     }
-    if (i + kAhead < order.size()) {
-      ws.kept_masses.prefetch(ws.contacts[order[i + kAhead].second],
+    if (i + kPrefetchAhead < order.size()) {
+      ws.kept_masses.prefetch(ws.contacts[order[i + kPrefetchAhead].second],
                               &BodyContact::KeptMasses::coupled);
     }
     const std::uint32_t c = order[i].second;
