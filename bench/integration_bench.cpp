@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <utility>
 
 #include "bandwidth_floor.h"
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -89,9 +90,9 @@ double runSteps(benchmark::State& state, World& world) {
   return elapsed.count();
 }
 
-// Seconds per pass of the floor loop over n particles, over `passes` passes.
-double floorSeconds(const std::size_t n, const std::int64_t passes) {
-  bench::FloorArrays floor(n);
+// Seconds per pass of a floor loop (bandwidth_floor.h), over `passes` passes.
+template <typename Floor>
+double floorSeconds(Floor floor, const std::int64_t passes) {
   floor.step();  // the pages are touched before the clock starts
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t p = 0; p < passes; ++p) {
@@ -103,36 +104,39 @@ double floorSeconds(const std::size_t n, const std::int64_t passes) {
   return elapsed.count() / static_cast<double>(passes);
 }
 
-void BM_ScenarioA_FreeFall(benchmark::State& state) {
-  World world = freeFallWorld(state.range(0));
-  const double seconds = runSteps(state, world);
-  // As many floor passes as A took steps (at least 100), after A's timed loop.
+// floor_ratio: a scenario's step time over its floor's pass at the same size, from as many floor
+// passes as it took steps (at least 100), after its timed loop.
+template <typename Floor>
+void reportFloorRatio(benchmark::State& state, const double seconds, Floor floor) {
   const std::int64_t steps = std::max<std::int64_t>(state.iterations(), 1);
-  const double floor = floorSeconds(world.particles().size(), std::max<std::int64_t>(steps, 100));
-  state.counters["floor_ratio"] = seconds / static_cast<double>(steps) / floor;
+  const double pass = floorSeconds(std::move(floor), std::max<std::int64_t>(steps, 100));
+  state.counters["floor_ratio"] = seconds / static_cast<double>(steps) / pass;
 }
 
-// Seconds per pass of B's floor over n particles, over `passes` passes.
-double springFloorSeconds(const std::size_t n, const std::int64_t passes) {
-  bench::SpringChainFloor floor(n, kChainLength);
-  floor.step();
-  const auto start = std::chrono::steady_clock::now();
-  for (std::int64_t p = 0; p < passes; ++p) {
+// Times a floor loop, reported per particle-step as the scenarios are.
+template <typename Floor>
+void timeFloor(benchmark::State& state, Floor& floor) {
+  for (auto _ : state) {
     floor.step();
     benchmark::DoNotOptimize(floor.positions());
     benchmark::ClobberMemory();
   }
-  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-  return elapsed.count() / static_cast<double>(passes);
+  state.counters["particle_step_time"] = benchmark::Counter(
+      static_cast<double>(floor.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["particles"] = static_cast<double>(floor.size());
+}
+
+void BM_ScenarioA_FreeFall(benchmark::State& state) {
+  World world = freeFallWorld(state.range(0));
+  const double seconds = runSteps(state, world);
+  reportFloorRatio(state, seconds, bench::FloorArrays(world.particles().size()));
 }
 
 void BM_ScenarioB_SpringChains(benchmark::State& state) {
   World world = springChainWorld(state.range(0), Integrator::kSemiImplicitEuler);
   const double seconds = runSteps(state, world);
-  const std::int64_t steps = std::max<std::int64_t>(state.iterations(), 1);
-  const double floor =
-      springFloorSeconds(world.particles().size(), std::max<std::int64_t>(steps, 100));
-  state.counters["floor_ratio"] = seconds / static_cast<double>(steps) / floor;
+  reportFloorRatio(state, seconds, bench::SpringChainFloor(world.particles().size(), kChainLength));
 }
 
 // Scenario B without the energy guard (WorldConfig::energy_growth_limit = 0): what the guard costs.
@@ -169,29 +173,13 @@ void integratorArguments(benchmark::internal::Benchmark* bench) {
 // A's step must move.
 void BM_ScenarioA_BandwidthFloor(benchmark::State& state) {
   bench::FloorArrays floor(static_cast<std::size_t>(state.range(0)));
-  for (auto _ : state) {
-    floor.step();
-    benchmark::DoNotOptimize(floor.positions());
-    benchmark::ClobberMemory();
-  }
-  state.counters["particle_step_time"] = benchmark::Counter(
-      static_cast<double>(floor.size()),
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["particles"] = static_cast<double>(floor.size());
+  timeFloor(state, floor);
 }
 
 // The floor under scenario B (bandwidth_floor.h): one pass doing the least B's step must do.
 void BM_ScenarioB_Floor(benchmark::State& state) {
   bench::SpringChainFloor floor(static_cast<std::size_t>(state.range(0)), kChainLength);
-  for (auto _ : state) {
-    floor.step();
-    benchmark::DoNotOptimize(floor.positions());
-    benchmark::ClobberMemory();
-  }
-  state.counters["particle_step_time"] = benchmark::Counter(
-      static_cast<double>(floor.size()),
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["particles"] = static_cast<double>(floor.size());
+  timeFloor(state, floor);
 }
 
 BENCHMARK(BM_ScenarioA_FreeFall)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000);
