@@ -7,11 +7,13 @@
 //   /tmp/random_drop_probe 4 600              # substeps, frames
 //   NOGRAVITY=1 /tmp/random_drop_probe 4 600  # then the deepest pair with gravity off, at rest
 // Environment: SEED=n the scene's seed (1, the benchmark's, by default), ITER=n iterations,
-// RELAX=n relaxing passes. Besides the kinetic energy and the deepest overlap each second it
-// prints (docs/benchmarks/rigid_2026-11-27_session10_random_drop_ke.sh sums those up), for the last
-// 3 s (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
-// energy at the end ("late"), and for the deepest pair at the end the least overlap over the
-// 15 axes of the separating axis test, computed here from the two boxes alone.
+// RELAX=n relaxing passes, PUSH=x max_push_speed, NOGUESS=1 no load guesses, NOSHOCK=1 no shock
+// pass, SLEEP=1 sleeping on (each second then also counts the dynamic boxes asleep). Besides the
+// kinetic energy and the deepest overlap each second it prints
+// (docs/benchmarks/rigid_2026-11-27_session10_random_drop_ke.sh sums those up), for the last 3 s
+// (180 frames), the worst and the mean of the frames' deepest overlaps and the linear kinetic
+// energy at the end ("late"), and for the deepest pair at the end the least overlap over the 15
+// axes of the separating axis test, computed here from the two boxes alone.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -33,9 +35,12 @@ int main(int argc, char** argv) {
   engine::World world = *engine::World::create(config);
   engine::BodySettings settings;
   settings.substeps = substeps;
-  settings.sleep = false;
+  settings.sleep = getenv("SLEEP") != nullptr;
   if (getenv("ITER")) settings.iterations = atoi(getenv("ITER"));
   if (getenv("RELAX")) settings.relax_iterations = atoi(getenv("RELAX"));
+  if (getenv("NOGUESS")) settings.guess_loads = false;
+  if (getenv("PUSH")) settings.max_push_speed = atof(getenv("PUSH"));
+  if (getenv("NOSHOCK")) settings.shock_propagation = false;
   world.setBodySettings(settings);
   engine::PlaneCollider ground;
   ground.normal = Vec3::UnitZ();
@@ -78,8 +83,13 @@ int main(int argc, char** argv) {
           worst = std::max(worst, -p.separation);
           if (-p.separation > 0.01) ++n;
         }
-      std::printf("t %.0f s: KE %.3g J deepest %.4f m, points deeper than 1 cm: %d\n",
-                  (f + 1) / 60.0, world.kineticEnergy(), worst, n);
+      int asleep = 0;
+      const auto& bodies = world.bodies();
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        asleep += bodies.dynamic(i) && !bodies.awake(i) ? 1 : 0;
+      }
+      std::printf("t %.0f s: KE %.3g J deepest %.4f m, points deeper than 1 cm: %d, asleep %d\n",
+                  (f + 1) / 60.0, world.kineticEnergy(), worst, n, asleep);
     }
   }
   {
