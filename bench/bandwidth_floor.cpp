@@ -222,6 +222,7 @@ SpringChainFloor::SpringChainFloor(const std::size_t particles, const std::size_
     stiffness_.get()[i] = ends_chain ? 0.0 : 10.0;
     rest_length_.get()[i] = 1.0;
   }
+  // The last particle's spring (k = 0) ends 1 m along x from where that particle starts.
   for (int c = 0; c < 3; ++c) {
     x_.get()[3 * particles + static_cast<std::size_t>(c)] =
         x_.get()[3 * (particles - 1) + static_cast<std::size_t>(c)] + (c == 0 ? 1.0 : 0.0);

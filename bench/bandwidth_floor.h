@@ -42,7 +42,7 @@ class FloorArrays {
 // root and division are taken all the same). No elastic energy is summed (B's guard sums it).
 class SpringChainFloor {
  public:
-  SpringChainFloor(std::size_t particles, std::size_t chain_length);
+  SpringChainFloor(std::size_t particles, std::size_t chain_length);  // particles >= 1
   std::size_t size() const { return particles_; }
   void step();
   const double* positions() const { return x_.get(); }
