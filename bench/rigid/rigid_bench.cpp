@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "engine_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 #include "rigid_report.h"
 #include "rigid_scenes.h"
@@ -34,50 +35,17 @@ using engine::BodyId;
 using engine::Real;
 using engine::Vec3;
 
-engine::BodyShapeSpec shapeOf(const BodySpec& spec) {
-  engine::BodyShapeSpec shape;
-  if (spec.shape == ShapeType::kSphere) {
-    shape.geometry = engine::SphereShape{spec.radius};
-  } else {
-    shape.geometry = engine::BoxShape{spec.half_extents};
-  }
-  shape.material = engine::Material{spec.restitution, spec.friction};
-  return shape;
-}
-
 class EngineWorld {
  public:
   EngineWorld(const RigidScene& scene, const int substeps, const int iterations,
               const bool sleeping)
       : scene_(scene) {
-    engine::WorldConfig config;
-    config.dt = 1.0 / 60.0;
-    config.gravity = scene.gravity;
-    world_ = *engine::World::create(config);
     engine::BodySettings settings;
     settings.substeps = substeps;
     settings.iterations = iterations;
     settings.sleep = sleeping;
-    world_.setBodySettings(settings);
-    engine::PlaneCollider ground;
-    ground.normal = Vec3::UnitZ();
-    ground.offset = scene.ground.height;
-    ground.material = engine::Material{scene.ground.restitution, scene.ground.friction};
-    world_.addCollider(ground);
     ids_.reserve(scene.bodies.size());
-    for (const BodySpec& spec : scene.bodies) {
-      engine::BodySpec body;
-      body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
-      body.pose.position = spec.position;
-      body.pose.rotation = spec.orientation;
-      body.shapes = {shapeOf(spec)};
-      if (!spec.isFixed()) {
-        body.mass = spec.mass;
-        body.linear_velocity = spec.linear_velocity;
-        body.angular_velocity = spec.angular_velocity;
-      }
-      ids_.push_back(*world_.addBody(body));
-    }
+    world_ = engineWorld(scene, settings, &ids_);
   }
 
   void stepFrame() { world_.step(); }

@@ -13,8 +13,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "engine_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
-#include "rigid_scenes.h"
 using namespace mass_aggregate_sim;
 using engine::Vec3;
 int main(int argc, char** argv) {
@@ -22,10 +22,6 @@ int main(int argc, char** argv) {
   const int substeps = argc > 2 ? atoi(argv[2]) : 4;
   const int iterations = argc > 3 ? atoi(argv[3]) : 2;
   const auto scene = bench::rigid::pyramid(base);
-  engine::WorldConfig config;
-  config.dt = 1.0 / 60.0;
-  config.gravity = scene.gravity;
-  engine::World world = *engine::World::create(config);
   engine::BodySettings settings;
   settings.substeps = substeps;
   settings.iterations = iterations;
@@ -33,23 +29,7 @@ int main(int argc, char** argv) {
   if (getenv("HZ")) settings.contact_hertz = atof(getenv("HZ"));
   if (getenv("ZETA")) settings.contact_damping_ratio = atof(getenv("ZETA"));
   if (getenv("PUSH")) settings.max_push_speed = atof(getenv("PUSH"));
-  world.setBodySettings(settings);
-  engine::PlaneCollider ground;
-  ground.normal = Vec3::UnitZ();
-  ground.offset = 0;
-  ground.material = {0, 0.5};
-  world.addCollider(ground);
-  for (const auto& spec : scene.bodies) {
-    engine::BodySpec body;
-    body.pose.position = spec.position;
-    body.pose.rotation = spec.orientation;
-    engine::BodyShapeSpec shape;
-    shape.geometry = engine::BoxShape{spec.half_extents};
-    shape.material = {spec.restitution, spec.friction};
-    body.shapes = {shape};
-    body.mass = spec.mass;
-    world.addBody(body);
-  }
+  engine::World world = bench::rigid::engineWorld(scene, settings);
   const auto& bodies = world.bodies();
   for (int f = 0; f < 600; ++f) {
     world.step();

@@ -11,46 +11,21 @@
 #include <cstdlib>
 #include <vector>
 
+#include "engine_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
-#include "rigid_scenes.h"
 using namespace mass_aggregate_sim;
 using engine::Vec3;
 int main(int argc, char** argv) {
   for (int arg = 1; arg < argc; ++arg) {
     const std::uint64_t seed = std::strtoull(argv[arg], nullptr, 10);
     const auto scene = bench::rigid::particleRain(2000, seed);
-    engine::WorldConfig config;
-    config.dt = 1.0 / 60.0;
-    config.gravity = scene.gravity;
-    engine::World world = *engine::World::create(config);
     engine::BodySettings settings;
     settings.sleep = false;
     if (std::getenv("SUBSTEPS")) settings.substeps = std::atoi(std::getenv("SUBSTEPS"));
     if (std::getenv("ITER")) settings.iterations = std::atoi(std::getenv("ITER"));
     if (std::getenv("NOSHOCK")) settings.shock_propagation = false;
-    world.setBodySettings(settings);
-    engine::PlaneCollider ground;
-    ground.normal = Vec3::UnitZ();
-    ground.offset = scene.ground.height;
-    ground.material = {scene.ground.restitution, scene.ground.friction};
-    world.addCollider(ground);
     std::vector<engine::BodyId> ids;
-    for (const auto& spec : scene.bodies) {
-      engine::BodySpec body;
-      body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
-      body.pose.position = spec.position;
-      body.pose.rotation = spec.orientation;
-      engine::BodyShapeSpec shape;
-      if (spec.shape == bench::rigid::ShapeType::kSphere) {
-        shape.geometry = engine::SphereShape{spec.radius};
-      } else {
-        shape.geometry = engine::BoxShape{spec.half_extents};
-      }
-      shape.material = {spec.restitution, spec.friction};
-      body.shapes = {shape};
-      if (!spec.isFixed()) body.mass = spec.mass;
-      ids.push_back(*world.addBody(body));
-    }
+    engine::World world = bench::rigid::engineWorld(scene, settings, &ids);
     for (int f = 0; f < 600; ++f) world.step();
     const auto& bodies = world.bodies();
     const auto top = static_cast<std::size_t>(scene.top_body);

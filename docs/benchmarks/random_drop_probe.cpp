@@ -20,8 +20,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "engine_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
-#include "rigid_scenes.h"
 using namespace mass_aggregate_sim;
 using engine::Vec3;
 int main(int argc, char** argv) {
@@ -29,10 +29,6 @@ int main(int argc, char** argv) {
   const int frames = argc > 2 ? atoi(argv[2]) : 600;
   const std::uint64_t seed = getenv("SEED") ? std::strtoull(getenv("SEED"), nullptr, 10) : 1;
   const auto scene = bench::rigid::randomDrop(1000, seed);
-  engine::WorldConfig config;
-  config.dt = 1.0 / 60.0;
-  config.gravity = scene.gravity;
-  engine::World world = *engine::World::create(config);
   engine::BodySettings settings;
   settings.substeps = substeps;
   settings.sleep = getenv("SLEEP") != nullptr;
@@ -41,27 +37,7 @@ int main(int argc, char** argv) {
   if (getenv("NOGUESS")) settings.guess_loads = false;
   if (getenv("PUSH")) settings.max_push_speed = atof(getenv("PUSH"));
   if (getenv("NOSHOCK")) settings.shock_propagation = false;
-  world.setBodySettings(settings);
-  engine::PlaneCollider ground;
-  ground.normal = Vec3::UnitZ();
-  ground.offset = 0;
-  ground.material = {0, 0.5};
-  world.addCollider(ground);
-  std::vector<engine::BodyId> ids;
-  for (const auto& spec : scene.bodies) {
-    engine::BodySpec body;
-    body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
-    body.pose.position = spec.position;
-    body.pose.rotation = spec.orientation;
-    engine::BodyShapeSpec shape;
-    shape.geometry = engine::BoxShape{spec.half_extents};
-    shape.material = {spec.restitution, spec.friction};
-    body.shapes = {shape};
-    if (!spec.isFixed()) {
-      body.mass = spec.mass;
-    }
-    ids.push_back(*world.addBody(body));
-  }
+  engine::World world = bench::rigid::engineWorld(scene, settings);
   constexpr int kLate = 180;
   double late_worst = 0, late_sum = 0;
   for (int f = 0; f < frames; ++f) {

@@ -15,8 +15,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "engine_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
-#include "rigid_scenes.h"
 using namespace mass_aggregate_sim;
 using engine::Vec3;
 
@@ -31,29 +31,9 @@ double number(const char* name, const double otherwise) {
 
 int main() {
   const auto scene = bench::rigid::randomDrop(1000, static_cast<std::uint64_t>(number("SEED", 1)));
-  engine::WorldConfig config;
-  config.dt = 1.0 / 60.0;
-  config.gravity = scene.gravity;
-  engine::World world = *engine::World::create(config);
   engine::BodySettings settings;
   settings.sleep = false;
-  world.setBodySettings(settings);
-  engine::PlaneCollider ground;
-  ground.normal = Vec3::UnitZ();
-  ground.material = {0, 0.5};
-  world.addCollider(ground);
-  for (const auto& spec : scene.bodies) {
-    engine::BodySpec body;
-    body.type = spec.isFixed() ? engine::BodyType::kFixed : engine::BodyType::kDynamic;
-    body.pose.position = spec.position;
-    body.pose.rotation = spec.orientation;
-    engine::BodyShapeSpec shape;
-    shape.geometry = engine::BoxShape{spec.half_extents};
-    shape.material = {spec.restitution, spec.friction};
-    body.shapes = {shape};
-    if (!spec.isFixed()) body.mass = spec.mass;
-    world.addBody(body);
-  }
+  engine::World world = bench::rigid::engineWorld(scene, settings);
   const int at = static_cast<int>(number("AT", 420));
   for (int f = 0; f < at; ++f) world.step();
   engine::BodySettings later = world.bodySettings();
