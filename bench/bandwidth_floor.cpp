@@ -158,7 +158,7 @@ std::size_t roundUp(const std::size_t bytes) { return (bytes + kLine - 1) / kLin
 
 }  // namespace
 
-void FloorArrays::Free::operator()(double* p) const { std::free(p); }
+void FreeAligned::operator()(double* p) const { std::free(p); }
 
 FloorArrays::FloorArrays(const std::size_t particles) : particles_(particles) {
   const std::size_t sizes[4] = {3 * particles * sizeof(double), 3 * particles * sizeof(double),
@@ -193,14 +193,12 @@ FloorArrays::FloorArrays(const std::size_t particles) : particles_(particles) {
 
 void FloorArrays::step() { floorPass(particles_, x_, v_, inverse_mass_, damping_); }
 
-void SpringChainFloor::Free::operator()(double* p) const { std::free(p); }
-
 SpringChainFloor::SpringChainFloor(const std::size_t particles, const std::size_t chain_length)
     : particles_(particles) {
   const auto allocate = [](const std::size_t count) {
     void* block = std::aligned_alloc(kLine, roundUp(count * sizeof(double)));
     if (block == nullptr) throw std::bad_alloc();
-    return std::unique_ptr<double, Free>(static_cast<double*>(block));
+    return std::unique_ptr<double, FreeAligned>(static_cast<double*>(block));
   };
   x_ = allocate(3 * (particles + 1));
   v_ = allocate(3 * particles);

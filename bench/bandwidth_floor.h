@@ -12,6 +12,11 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace bench {
 
+// Frees what std::aligned_alloc gave the floors' arrays.
+struct FreeAligned {
+  void operator()(double* p) const;
+};
+
 // The floor's own arrays (the layout of the engine's: xyz of particle i at 3i, scalars at i),
 // each aligned to a cache line.
 class FloorArrays {
@@ -23,11 +28,8 @@ class FloorArrays {
   const double* positions() const { return x_; }
 
  private:
-  struct Free {
-    void operator()(double* p) const;
-  };
   std::size_t particles_;
-  std::unique_ptr<double, Free> storage_;
+  std::unique_ptr<double, FreeAligned> storage_;
   double* x_;
   double* v_;
   double* inverse_mass_;
@@ -48,16 +50,13 @@ class SpringChainFloor {
   const double* positions() const { return x_.get(); }
 
  private:
-  struct Free {
-    void operator()(double* p) const;
-  };
   std::size_t particles_;
-  std::unique_ptr<double, Free> x_;  // 3 (n + 1): the last particle's next, a copy of it
-  std::unique_ptr<double, Free> v_;
-  std::unique_ptr<double, Free> inverse_mass_;
-  std::unique_ptr<double, Free> damping_;
-  std::unique_ptr<double, Free> stiffness_;  // spring i joins particles i and i + 1
-  std::unique_ptr<double, Free> rest_length_;
+  std::unique_ptr<double, FreeAligned> x_;  // 3 (n + 1): the last particle's next, a copy of it
+  std::unique_ptr<double, FreeAligned> v_;
+  std::unique_ptr<double, FreeAligned> inverse_mass_;
+  std::unique_ptr<double, FreeAligned> damping_;
+  std::unique_ptr<double, FreeAligned> stiffness_;  // spring i joins particles i and i + 1
+  std::unique_ptr<double, FreeAligned> rest_length_;
 };
 
 }  // namespace bench

@@ -12,6 +12,8 @@
 // change: SUB=n substeps, ITERS=n iterations, RELAXS=n relaxing passes, PUSH=x max_push_speed,
 // HERTZ=x contact_hertz, DAMP=x contact_damping_ratio, SPEC=x speculative_distance, NOGUESS=1
 // no load guesses, NOSHOCK=1 no shock pass.
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
