@@ -223,6 +223,15 @@ void runs(benchmark::internal::Benchmark* b) {
   b->Iterations(kFrames)->Unit(benchmark::kMillisecond);
 }
 
+// The quality ladder, deactivation off: 2, 8 and 16 substeps (those up to kMaxSubsteps), to find
+// the least that reaches a given at-rest quality (docs/BENCHMARKS.md, "equal quality").
+template <int kSize, int kMaxSubsteps>
+void ladderRuns(benchmark::internal::Benchmark* b) {
+  for (const int substeps : {2, 8, 16}) {
+    if (substeps <= kMaxSubsteps) b->Args({kSize, substeps, 0});
+  }
+}
+
 void BM_Bullet_RigidPyramid(benchmark::State& state) {
   runScene(state, pyramid(static_cast<int>(state.range(0))));
 }
@@ -239,16 +248,18 @@ void BM_Bullet_ParticleRain(benchmark::State& state) {
   runScene(state, particleRain(static_cast<int>(state.range(0))));
 }
 
-BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>);
-BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<100, 60>);
+BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20, 16>);
+BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<100, 60>)->Apply(ladderRuns<100, 8>);
 BENCHMARK(BM_Bullet_PyramidAndRoller)
     ->Args({100, 4, 1})
     ->Iterations(60)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<10, 600>);
-BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<20, 600>);
-BENCHMARK(BM_Bullet_RandomDrop)->Apply(runs<1000, 300>);
-BENCHMARK(BM_Bullet_ParticleRain)->Apply(runs<kRainDefaultSpheres, 300>);
+BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<10, 600>)->Apply(ladderRuns<10, 16>);
+BENCHMARK(BM_Bullet_RigidStack)->Apply(runs<20, 600>)->Apply(ladderRuns<20, 16>);
+BENCHMARK(BM_Bullet_RandomDrop)->Apply(runs<1000, 300>)->Apply(ladderRuns<1000, 16>);
+BENCHMARK(BM_Bullet_ParticleRain)
+    ->Apply(runs<kRainDefaultSpheres, 300>)
+    ->Apply(ladderRuns<kRainDefaultSpheres, 16>);
 
 }  // namespace
 }  // namespace rigid

@@ -6,7 +6,8 @@
 // body setting at its default; sleeping = 0 turns sleeping off, 1 keeps the default (an island
 // slow for 0.5 s sleeps). The default settings are 4 substeps of 2 iterations; the tall pyramid
 // also runs at 8 and 12 substeps of 1 iteration (docs/ACCURACY.md recommends them for piles),
-// the random drop at 4 substeps of 3 and 4 iterations.
+// the random drop at 4 substeps of 3 and 4 iterations, and every scene, sleeping off, at the
+// cheaper 1 x 1, 2 x 1 and 2 x 2 (the 210 pyramid also at 8 x 1).
 //
 // Each case builds its scene and simulates 10 s untimed, recording the mean cost of a frame over
 // those 10 s (settle_ms: the falling, stacking and settling a user watches), the worst and mean
@@ -144,6 +145,13 @@ void dropRuns(benchmark::internal::Benchmark* b) {
   for (const int iterations : {3, 4}) b->Args({kSize, 4, 0, iterations});
 }
 
+// The quality ladder, sleeping off: the cheaper settings, to find the least that reaches a given
+// at-rest quality (docs/BENCHMARKS.md, "equal quality"); bullet_peer_bench.cpp climbs Bullet's.
+template <int kSize>
+void ladderRuns(benchmark::internal::Benchmark* b) {
+  b->Args({kSize, 1, 0, 1})->Args({kSize, 2, 0, 1})->Args({kSize, 2, 0, 2});
+}
+
 void BM_RigidPyramid(benchmark::State& state) {
   runScene(state, pyramid(static_cast<int>(state.range(0))));
 }
@@ -160,16 +168,18 @@ void BM_RigidParticleRain(benchmark::State& state) {
   runScene(state, particleRain(static_cast<int>(state.range(0))));
 }
 
-BENCHMARK(BM_RigidPyramid)->Apply(runs<20, 600>);
-BENCHMARK(BM_RigidPyramid)->Apply(pileRuns<100, 60>);
+BENCHMARK(BM_RigidPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20>)->Args({20, 8, 0, 1});
+BENCHMARK(BM_RigidPyramid)->Apply(pileRuns<100, 60>)->Apply(ladderRuns<100>);
 BENCHMARK(BM_RigidPyramidAndRoller)
     ->Args({100, 4, 1, 2})
     ->Iterations(60)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RigidStack)->Apply(runs<10, 600>);
-BENCHMARK(BM_RigidStack)->Apply(runs<20, 600>);
-BENCHMARK(BM_RigidRandomDrop)->Apply(dropRuns<1000, 300>);
-BENCHMARK(BM_RigidParticleRain)->Apply(runs<kRainDefaultSpheres, 300>);
+BENCHMARK(BM_RigidStack)->Apply(runs<10, 600>)->Apply(ladderRuns<10>);
+BENCHMARK(BM_RigidStack)->Apply(runs<20, 600>)->Apply(ladderRuns<20>);
+BENCHMARK(BM_RigidRandomDrop)->Apply(dropRuns<1000, 300>)->Apply(ladderRuns<1000>);
+BENCHMARK(BM_RigidParticleRain)
+    ->Apply(runs<kRainDefaultSpheres, 300>)
+    ->Apply(ladderRuns<kRainDefaultSpheres>);
 
 }  // namespace
 }  // namespace rigid
