@@ -235,6 +235,9 @@ void ladderRuns(benchmark::internal::Benchmark* b) {
 void BM_Bullet_RigidPyramid(benchmark::State& state) {
   runScene(state, pyramid(static_cast<int>(state.range(0))));
 }
+void BM_Bullet_DroppedPyramid(benchmark::State& state) {
+  runScene(state, droppedPyramid(static_cast<int>(state.range(0))));
+}
 void BM_Bullet_PyramidAndRoller(benchmark::State& state) {
   runScene(state, pyramidAndRoller(static_cast<int>(state.range(0))));
 }
@@ -250,6 +253,7 @@ void BM_Bullet_ParticleRain(benchmark::State& state) {
 
 BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20, 16>);
 BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<100, 60>)->Apply(ladderRuns<100, 8>);
+BENCHMARK(BM_Bullet_DroppedPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20, 16>);
 BENCHMARK(BM_Bullet_PyramidAndRoller)
     ->Args({100, 4, 1})
     ->Iterations(60)

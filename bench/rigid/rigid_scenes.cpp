@@ -68,6 +68,26 @@ RigidScene pyramid(const int base) {
   return scene;
 }
 
+RigidScene droppedPyramid(const int base, const std::uint64_t seed) {
+  constexpr double kSpacing = 1.01;
+  constexpr double kJitter = 0.002;
+  constexpr double kRowGap = 0.0001;
+  RigidScene scene;
+  scene.name = "dropped_pyramid/" + std::to_string(base);
+  if (seed != 1) scene.name += ", seed " + std::to_string(seed);
+  scene.bodies.reserve(static_cast<std::size_t>(base) * static_cast<std::size_t>(base + 1) / 2);
+  SplitMix64 rng(seed);
+  for (int row = 0; row < base; ++row) {
+    const double first = kSpacing * (0.5 * (row + 1) - 0.5 * base);
+    for (int k = 0; k < base - row; ++k) {
+      const double x = first + kSpacing * k + rng.uniform(-kJitter, kJitter);
+      scene.bodies.push_back(unitCube(Eigen::Vector3d(x, 0.0, 0.5 + (1.0 + kRowGap) * row)));
+    }
+  }
+  scene.top_body = static_cast<int>(scene.bodies.size()) - 1;
+  return scene;
+}
+
 RigidScene pyramidAndRoller(const int base) {
   constexpr double kRadius = 0.25;
   constexpr double kSpeed = 2.0;

@@ -76,6 +76,12 @@ RigidScene pyramid(int base);
 // one body that keeps moving past it and touches nothing but the ground. Top body: the pyramid's.
 RigidScene pyramidAndRoller(int base);
 
+// Box2D's pyramid as a user might lay it out by hand: the boxes of a row 1 cm apart (the rows'
+// centres 1.01 m apart along x), each moved along x by a uniform draw in [-2 mm, 2 mm], and each
+// row 0.1 mm above the one below (z = 0.5 + 1.0001 i), so that no two boxes touch and the
+// pyramid falls into place (its top by 1.9 mm). The top body is the single box of the last row.
+RigidScene droppedPyramid(int base, std::uint64_t seed = 1);
+
 // n unit cubes of 1 kg in a column at x = y = 0, z = 0.5 + i, touching. Top body: the last.
 RigidScene stack(int n);
 

@@ -7,7 +7,9 @@
 //     -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
 //   /tmp/pyramid_ke_probe 20 4 2              # base, substeps, iterations
-//   NOSHOCK=1 /tmp/pyramid_ke_probe 20 4 2    # also NOGUESS, RELAX=n, HZ=x, FRAMES=n
+//   NOSHOCK=1 /tmp/pyramid_ke_probe 20 4 2    # also NOGUESS, RELAX=n, HZ=x, FRAMES=n, and
+//                                             # GUESSFROM=f / GUESSUNTIL=f: load guesses only
+//                                             # from frame f on / before frame f (session 18)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -31,7 +33,12 @@ int main(int argc, char** argv) {
   const int frames = getenv("FRAMES") ? atoi(getenv("FRAMES")) : 600;
   engine::World world = bench::rigid::engineWorld(bench::rigid::pyramid(base), settings);
   const auto& bodies = world.bodies();
+  const int guess_from = getenv("GUESSFROM") ? atoi(getenv("GUESSFROM")) : 0;
+  const int guess_until = getenv("GUESSUNTIL") ? atoi(getenv("GUESSUNTIL")) : 1 << 30;
   for (int f = 0; f < frames; ++f) {
+    engine::BodySettings now = world.bodySettings();
+    now.guess_loads = settings.guess_loads && f >= guess_from && f < guess_until;
+    world.setBodySettings(now);
     world.step();
     if (f % 60 != 59 && f < frames - 5) continue;
     std::vector<std::pair<double, std::size_t>> energies;

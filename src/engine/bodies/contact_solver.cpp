@@ -559,6 +559,22 @@ void warmStartContacts(std::vector<ContactConstraint>& constraints, std::vector<
   if (moved) takeSeparations(constraints, bodies);
 }
 
+namespace {
+
+// A support is level when its normal is within 10 degrees of gravity's line: the lever rule
+// balances the moments of vertical loads, and a support tilted by theta also pushes sideways by
+// tan(theta) of its load (0.18 at 10 degrees), a moment the rule leaves out.
+constexpr Real kLevelSupport = 0.98480775301220802;  // cos(10 degrees)
+
+// The point of c where it touches `side`, from side's centre: the mean of its points' anchors.
+Vec3 supportCentre(const ContactConstraint& c, const std::int32_t side) {
+  Vec3 sum = Vec3::Zero();
+  for (int p = 0; p < c.count; ++p) sum += c.a == side ? c.points[p].r_a : c.points[p].r_b;
+  return sum / static_cast<Real>(c.count);
+}
+
+}  // namespace
+
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
                        const Vec3& gravity, const Real h, const Real dt,
@@ -607,43 +623,83 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
     return heights[static_cast<std::size_t>(x)] > heights[static_cast<std::size_t>(y)];
   });
   std::vector<Real>& load = buffers.load;
+  std::vector<Vec3>& moment = buffers.moment;
   load.assign(bodies.size(), 0.0);
+  moment.assign(bodies.size(), Vec3::Zero());
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     if (bodies[k].inverse_mass > 0.0) load[k] = g * h / bodies[k].inverse_mass;
   }
   const SolverBody still;
+  // Whether c starts from a guess: it carries nothing yet, and it is resting.
+  const auto guessed = [&](const ContactConstraint& c) {
+    if (c.count == 0) return false;
+    for (int p = 0; p < c.count; ++p) {
+      if (c.points[p].normal_impulse != 0.0) return false;
+    }
+    const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
+    const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
+    Real closing = 0.0;
+    Real gap = std::numeric_limits<Real>::infinity();
+    for (int p = 0; p < c.count; ++p) {
+      const ContactConstraintPoint& cp = c.points[p];
+      closing =
+          std::max(closing, std::abs(c.normal.dot(b.velocityAt(cp.r_b) - a.velocityAt(cp.r_a))));
+      gap = std::min(gap, cp.separation);
+    }
+    return closing <= resting_speed && gap <= resting_gap;
+  };
   for (const std::int32_t k : order) {
     const auto begin = first[static_cast<std::size_t>(k)];
     const auto end = first[static_cast<std::size_t>(k) + 1];
-    const Real share = load[static_cast<std::size_t>(k)] / static_cast<Real>(end - begin);
+    const Real total = load[static_cast<std::size_t>(k)];
+    Real shares[2] = {total / static_cast<Real>(end - begin),
+                      total / static_cast<Real>(end - begin)};
+    if (end - begin == 2) {
+      const ContactConstraint& c0 = constraints[supports[begin].constraint];
+      const ContactConstraint& c1 = constraints[supports[begin + 1].constraint];
+      const auto level = [&](const ContactConstraint& c) {
+        return std::abs(c.normal.dot(up)) >= kLevelSupport && guessed(c);
+      };
+      if (level(c0) && level(c1)) {
+        // The lever rule: the load F acts at `at` (its moment over F), and each support takes
+        // the share whose moment about that point cancels the other's:
+        //   s_1 = F t, s_0 = F (1 - t), t = (at - c_0).u / |c_1 - c_0|,
+        // c_i the supports' centres, u the unit vector from c_0 to c_1 across gravity's line
+        // (t within [0, 1]: a load beyond a support rests on it alone). An even split leaves the
+        // body a moment to turn by: Box2D's 210-box pyramid, guessed so, rocked for good (0.2 to
+        // 1.4 mJ), and with no guess at all its passes bring it to rest.
+        const Vec3 centre = supportCentre(c0, k);
+        Vec3 across = supportCentre(c1, k) - centre;
+        across -= across.dot(up) * up;
+        const Real span = across.squaredNorm();
+        if (span > 0.0) {
+          const Vec3 at = moment[static_cast<std::size_t>(k)] / total;
+          const Real t = std::clamp((at - centre).dot(across) / span, 0.0, 1.0);
+          shares[0] = total * (1.0 - t);
+          shares[1] = total * t;
+        }
+      }
+    }
     for (std::uint32_t j = begin; j < end; ++j) {
       const RestingLoadBuffers::Support& support = supports[j];
       ContactConstraint& c = constraints[support.constraint];
+      const Real share = end - begin == 2 ? shares[j - begin] : shares[0];
       Real carried = 0.0;
-      bool fresh = true;
-      for (int p = 0; p < c.count; ++p) {
-        carried += c.points[p].normal_impulse;
-        fresh = fresh && c.points[p].normal_impulse == 0.0;
-      }
-      if (fresh && c.count > 0) {
-        const SolverBody& a = c.a == kNoBody ? still : bodies[static_cast<std::size_t>(c.a)];
-        const SolverBody& b = c.b == kNoBody ? still : bodies[static_cast<std::size_t>(c.b)];
-        Real closing = 0.0;
-        Real gap = std::numeric_limits<Real>::infinity();
+      if (guessed(c)) {
         for (int p = 0; p < c.count; ++p) {
-          const ContactConstraintPoint& cp = c.points[p];
-          closing = std::max(closing,
-                             std::abs(c.normal.dot(b.velocityAt(cp.r_b) - a.velocityAt(cp.r_a))));
-          gap = std::min(gap, cp.separation);
+          c.points[p].normal_impulse = share / static_cast<Real>(c.count);
         }
-        if (closing <= resting_speed && gap <= resting_gap) {
-          for (int p = 0; p < c.count; ++p) {
-            c.points[p].normal_impulse = share / static_cast<Real>(c.count);
-          }
-          carried = share;
-        }
+        carried = share;
+      } else {
+        for (int p = 0; p < c.count; ++p) carried += c.points[p].normal_impulse;
       }
-      if (support.below != kNoBody) load[static_cast<std::size_t>(support.below)] += carried;
+      if (support.below == kNoBody) continue;
+      const auto below = static_cast<std::size_t>(support.below);
+      load[below] += carried;
+      for (int p = 0; p < c.count; ++p) {
+        const ContactConstraintPoint& cp = c.points[p];
+        moment[below] += cp.normal_impulse * (c.a == support.below ? cp.r_a : cp.r_b);
+      }
     }
   }
 }

@@ -68,19 +68,23 @@ struct RestingLoadBuffers {
   std::vector<Support> supports;
   std::vector<std::int32_t> order;  // the bodies resting on something, highest first
   std::vector<Real> load;           // per solver body: its weight and what rests on it (N s)
+  std::vector<Vec3> moment;         // per solver body: its load's moment about its centre (N s m)
 };
 
-// A first guess for the impulses of new resting contacts: the static load each carries. Going
-// down from the highest body, each body's weight plus what rests on it is split evenly over the
-// contacts it rests on (a contact whose normal is within 45 degrees of gravity's line), and each
-// passes its share to the body below. A contact that already carries impulses (warm started)
-// passes those on instead; one closing or opening faster than gravity builds in two substeps is
-// not resting and starts from nothing, and so does one whose nearest point is farther than it
-// closes within the step (at that speed and falling freely, 2 g h dt + g dt^2 / 2: 2.7 mm at
-// 60 Hz and 4 substeps): a speculative contact that may not touch, where a guessed load held a
-// falling column up from below in flight and kept a settled pile of random boxes creeping.
-// Without the guess a pyramid of a hundred rows sinks for seconds while the solver's passes carry
-// the load down row by row.
+// A first guess for the impulses of resting contacts that carry none: the static load each
+// carries. Going down from the highest body, each body's weight plus what rests on it is shared
+// over the contacts it rests on (a contact whose normal is within 45 degrees of gravity's line):
+// between two level ones by the lever rule (each takes the share that balances the load's moment
+// about where it acts), else evenly; each passes its share to the body below, at its points. A
+// contact that already carries impulses (warm started) passes those on instead. A contact
+// without impulses is guessed whether it is new or lasting (one that went slack, or whose points
+// changed their feature ids): guessing only new ones left the 5,050-box pyramid awake at 3 s.
+// One closing or opening faster than gravity builds in two substeps is not resting and starts
+// from nothing, and so does one whose nearest point is farther than it closes within the step (at
+// that speed and falling freely, 2 g h dt + g dt^2 / 2: 2.7 mm at 60 Hz and 4 substeps): a
+// speculative contact that may not touch, where a guessed load held a falling column up from
+// below in flight and kept a settled pile of random boxes creeping. Without the guess a pyramid
+// of a hundred rows sinks for seconds while the solver's passes carry the load down row by row.
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
                        const std::vector<SolverBody>& bodies, const std::vector<Real>& heights,
                        const Vec3& gravity, Real h, Real dt, RestingLoadBuffers& buffers);

@@ -18,8 +18,9 @@ struct BodySettings {
   // after the positions move.
   int iterations = 2;
   int relax_iterations = 0;
-  // New resting contacts start from the static load they carry (a guess the passes refine);
-  // not those whose gap does not close within the step (contact_solver.h).
+  // Resting contacts that carry no impulse start from the static load they carry (a guess the
+  // passes refine, shared between two level supports by the lever rule); not those whose gap
+  // does not close within the step (contact_solver.h).
   bool guess_loads = true;
   // A last pass per substep over the contacts where one body rests on another, bottom up, with
   // the lower body held still (shock propagation; still as the kinematic body the pile rests on
