@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <string>
+#include <utility>
 
 namespace mass_aggregate_sim {
 namespace bench {
@@ -54,38 +56,38 @@ Eigen::Quaterniond randomOrientation(SplitMix64& rng) {
 
 }  // namespace
 
-RigidScene pyramid(const int base) {
+namespace {
+
+// Box2D's pyramid laid with the boxes of a row `spacing` m apart centre to centre (1: touching),
+// each moved along x by a draw in [-jitter, jitter] (none when 0), each row `row_gap` m above the
+// one below. The top body is the single box of the last row.
+RigidScene layPyramid(std::string name, const int base, const double spacing, const double jitter,
+                      const double row_gap, const std::uint64_t seed) {
   RigidScene scene;
-  scene.name = "pyramid/" + std::to_string(base);
+  scene.name = std::move(name);
   scene.bodies.reserve(static_cast<std::size_t>(base) * static_cast<std::size_t>(base + 1) / 2);
+  SplitMix64 rng(seed);
   for (int row = 0; row < base; ++row) {
-    const double first = 0.5 * (row + 1) - 0.5 * base;
+    const double first = spacing * (0.5 * (row + 1) - 0.5 * base);
     for (int k = 0; k < base - row; ++k) {
-      scene.bodies.push_back(unitCube(Eigen::Vector3d(first + k, 0.0, 0.5 + row)));
+      const double x = first + spacing * k + rng.uniform(-jitter, jitter);
+      scene.bodies.push_back(unitCube(Eigen::Vector3d(x, 0.0, 0.5 + (1.0 + row_gap) * row)));
     }
   }
   scene.top_body = static_cast<int>(scene.bodies.size()) - 1;
   return scene;
 }
 
+}  // namespace
+
+RigidScene pyramid(const int base) {
+  return layPyramid("pyramid/" + std::to_string(base), base, 1.0, 0.0, 0.0, 1);
+}
+
 RigidScene droppedPyramid(const int base, const std::uint64_t seed) {
-  constexpr double kSpacing = 1.01;
-  constexpr double kJitter = 0.002;
-  constexpr double kRowGap = 0.0001;
-  RigidScene scene;
-  scene.name = "dropped_pyramid/" + std::to_string(base);
-  if (seed != 1) scene.name += ", seed " + std::to_string(seed);
-  scene.bodies.reserve(static_cast<std::size_t>(base) * static_cast<std::size_t>(base + 1) / 2);
-  SplitMix64 rng(seed);
-  for (int row = 0; row < base; ++row) {
-    const double first = kSpacing * (0.5 * (row + 1) - 0.5 * base);
-    for (int k = 0; k < base - row; ++k) {
-      const double x = first + kSpacing * k + rng.uniform(-kJitter, kJitter);
-      scene.bodies.push_back(unitCube(Eigen::Vector3d(x, 0.0, 0.5 + (1.0 + kRowGap) * row)));
-    }
-  }
-  scene.top_body = static_cast<int>(scene.bodies.size()) - 1;
-  return scene;
+  std::string name = "dropped_pyramid/" + std::to_string(base);
+  if (seed != 1) name += ", seed " + std::to_string(seed);
+  return layPyramid(std::move(name), base, 1.01, 0.002, 0.0001, seed);
 }
 
 RigidScene pyramidAndRoller(const int base) {

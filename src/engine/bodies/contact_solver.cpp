@@ -573,6 +573,24 @@ Vec3 supportCentre(const ContactConstraint& c, const std::int32_t side) {
   return sum / static_cast<Real>(c.count);
 }
 
+// The lever rule for a load F acting at `at` (from body's centre) on two supports c0 and c1:
+// each takes the share whose moment about that point cancels the other's,
+//   s_1 = F t, s_0 = F (1 - t), t = (at - c_0).u / |c_1 - c_0|,
+// c_i the supports' centres, u the unit vector from c_0 to c_1 across gravity's line (t within
+// [0, 1]: a load beyond a support rests on it alone). Returns t; none when the two centres are
+// one above the other. An even split leaves the body a moment to turn by: Box2D's 210-box
+// pyramid, guessed so, rocked for good (0.2 to 1.4 mJ), and with no guess at all its passes
+// bring it to rest.
+std::optional<Real> leverFraction(const ContactConstraint& c0, const ContactConstraint& c1,
+                                  const std::int32_t body, const Vec3& at, const Vec3& up) {
+  const Vec3 centre = supportCentre(c0, body);
+  Vec3 across = supportCentre(c1, body) - centre;
+  across -= across.dot(up) * up;
+  const Real span = across.squaredNorm();
+  if (!(span > 0.0)) return std::nullopt;
+  return std::clamp((at - centre).dot(across) / span, 0.0, 1.0);
+}
+
 }  // namespace
 
 void guessRestingLoads(std::vector<ContactConstraint>& constraints,
@@ -648,42 +666,27 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
     }
     return closing <= resting_speed && gap <= resting_gap;
   };
+  // Whether c is a support the lever rule shares a load over: level, and guessed.
+  const auto level = [&](const ContactConstraint& c) {
+    return std::abs(c.normal.dot(up)) >= kLevelSupport && guessed(c);
+  };
   for (const std::int32_t k : order) {
     const auto begin = first[static_cast<std::size_t>(k)];
     const auto end = first[static_cast<std::size_t>(k) + 1];
     const Real total = load[static_cast<std::size_t>(k)];
-    Real shares[2] = {total / static_cast<Real>(end - begin),
-                      total / static_cast<Real>(end - begin)};
+    const Real even = total / static_cast<Real>(end - begin);
+    std::optional<Real> lever;
     if (end - begin == 2) {
       const ContactConstraint& c0 = constraints[supports[begin].constraint];
       const ContactConstraint& c1 = constraints[supports[begin + 1].constraint];
-      const auto level = [&](const ContactConstraint& c) {
-        return std::abs(c.normal.dot(up)) >= kLevelSupport && guessed(c);
-      };
       if (level(c0) && level(c1)) {
-        // The lever rule: the load F acts at `at` (its moment over F), and each support takes
-        // the share whose moment about that point cancels the other's:
-        //   s_1 = F t, s_0 = F (1 - t), t = (at - c_0).u / |c_1 - c_0|,
-        // c_i the supports' centres, u the unit vector from c_0 to c_1 across gravity's line
-        // (t within [0, 1]: a load beyond a support rests on it alone). An even split leaves the
-        // body a moment to turn by: Box2D's 210-box pyramid, guessed so, rocked for good (0.2 to
-        // 1.4 mJ), and with no guess at all its passes bring it to rest.
-        const Vec3 centre = supportCentre(c0, k);
-        Vec3 across = supportCentre(c1, k) - centre;
-        across -= across.dot(up) * up;
-        const Real span = across.squaredNorm();
-        if (span > 0.0) {
-          const Vec3 at = moment[static_cast<std::size_t>(k)] / total;
-          const Real t = std::clamp((at - centre).dot(across) / span, 0.0, 1.0);
-          shares[0] = total * (1.0 - t);
-          shares[1] = total * t;
-        }
+        lever = leverFraction(c0, c1, k, moment[static_cast<std::size_t>(k)] / total, up);
       }
     }
     for (std::uint32_t j = begin; j < end; ++j) {
       const RestingLoadBuffers::Support& support = supports[j];
       ContactConstraint& c = constraints[support.constraint];
-      const Real share = end - begin == 2 ? shares[j - begin] : shares[0];
+      const Real share = !lever ? even : j == begin ? total * (1.0 - *lever) : total * *lever;
       Real carried = 0.0;
       if (guessed(c)) {
         for (int p = 0; p < c.count; ++p) {
