@@ -1,0 +1,24 @@
+#!/bin/bash
+# The ladder of settings (docs/BENCHMARKS.md, "2026-11-28, session 17") for the scenes named by
+# a regular expression over the benchmark names' scene part: ours at every setting registered,
+# then Bullet 3.24 (double, 10 iterations) at every substep count registered, sleeping off, one
+# program after the other. Build both first (scripts/bench.sh builds them), then from the
+# repository root, e.g. for the dropped pyramid (session 19):
+#   flock /tmp/mas_build.lock bash docs/benchmarks/rigid_ladder.sh DroppedPyramid \
+#     > docs/benchmarks/rigid_2026-11-28_session19_dropped_ladder.txt
+# Ours are named BM_Rigid<Scene>/..., Bullet's BM_Bullet_<Scene>/... (for the stacks, Box2D's
+# pyramid and the random drop, BM_Bullet_Rigid<Scene>: pass 'Pyramid|RigidPyramid' and the like).
+set -u
+scenes="${1:?usage: rigid_ladder.sh SCENE_REGEX}"
+lib="${MAS_WS:-$HOME/mass_aggregate_sim_ws}/devel/lib"
+echo "# $(uname -srm); $(grep -m1 'model name' /proc/cpuinfo); $(nproc) cores"
+echo "# engine $(git rev-parse --short HEAD) + the working tree; $(sha256sum "$lib/libmass_aggregate_sim_engine.so")"
+echo "== ours $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
+"$lib/mass_aggregate_sim/engine_bench" \
+  --benchmark_filter="BM_Rigid(${scenes})/[0-9]+/[0-9]+/0/" \
+  --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
+echo "== bullet $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
+"$lib/mass_aggregate_sim/bullet_peer_bench" \
+  --benchmark_filter="BM_Bullet_(${scenes})/[0-9]+/[0-9]+/0/" \
+  --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
+echo "== end $(date -u +%T)"
