@@ -7,15 +7,5 @@
 #   flock /tmp/mas_build.lock bash docs/benchmarks/rigid_2026-11-28_session17_ladder.sh \
 #     > docs/benchmarks/rigid_2026-11-28_session17_ladder.txt
 set -u
-lib="${MAS_WS:-$HOME/mass_aggregate_sim_ws}/devel/lib"
-echo "# $(uname -srm); $(grep -m1 'model name' /proc/cpuinfo); $(nproc) cores"
-echo "# engine $(git rev-parse --short HEAD); $(sha256sum "$lib/libmass_aggregate_sim_engine.so")"
-echo "== ours $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
-"$lib/mass_aggregate_sim/engine_bench" \
-  --benchmark_filter='BM_Rigid(Pyramid|Stack|RandomDrop|ParticleRain)/[0-9]+/[0-9]+/0/' \
-  --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
-echo "== bullet $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
-"$lib/mass_aggregate_sim/bullet_peer_bench" \
-  --benchmark_filter='BM_Bullet_(RigidPyramid|RigidStack|RandomDrop|ParticleRain)/[0-9]+/[0-9]+/0/' \
-  --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
-echo "== end $(date -u +%T)"
+exec bash "$(dirname "$0")/rigid_ladder.sh" 'Pyramid|Stack|RandomDrop|ParticleRain' \
+  'RigidPyramid|RigidStack|RandomDrop|ParticleRain'

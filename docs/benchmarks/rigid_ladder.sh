@@ -6,19 +6,20 @@
 # repository root, e.g. for the dropped pyramid (session 19):
 #   flock /tmp/mas_build.lock bash docs/benchmarks/rigid_ladder.sh DroppedPyramid \
 #     > docs/benchmarks/rigid_2026-11-28_session19_dropped_ladder.txt
-# Ours are named BM_Rigid<Scene>/..., Bullet's BM_Bullet_<Scene>/... (for the stacks, Box2D's
-# pyramid and the random drop, BM_Bullet_Rigid<Scene>: pass 'Pyramid|RigidPyramid' and the like).
+# Ours are named BM_Rigid<Scene>/..., Bullet's BM_Bullet_<Scene>/... except that Box2D's pyramid
+# and the stacks are BM_Bullet_Rigid<Scene>: a second regular expression, if given, is Bullet's.
 set -u
-scenes="${1:?usage: rigid_ladder.sh SCENE_REGEX}"
+ours="${1:?usage: rigid_ladder.sh SCENE_REGEX [BULLET_SCENE_REGEX]}"
+bullet="${2:-$1}"
 lib="${MAS_WS:-$HOME/mass_aggregate_sim_ws}/devel/lib"
 echo "# $(uname -srm); $(grep -m1 'model name' /proc/cpuinfo); $(nproc) cores"
 echo "# engine $(git rev-parse --short HEAD) + the working tree; $(sha256sum "$lib/libmass_aggregate_sim_engine.so")"
 echo "== ours $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
 "$lib/mass_aggregate_sim/engine_bench" \
-  --benchmark_filter="BM_Rigid(${scenes})/[0-9]+/[0-9]+/0/" \
+  --benchmark_filter="BM_Rigid(${ours})/[0-9]+/[0-9]+/0/" \
   --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
 echo "== bullet $(date -u +%T) load $(cut -d' ' -f1 /proc/loadavg)"
 "$lib/mass_aggregate_sim/bullet_peer_bench" \
-  --benchmark_filter="BM_Bullet_(${scenes})/[0-9]+/[0-9]+/0/" \
+  --benchmark_filter="BM_Bullet_(${bullet})/[0-9]+/[0-9]+/0/" \
   --benchmark_counters_tabular=true 2>/dev/null | grep -E '^BM_|^Benchmark'
 echo "== end $(date -u +%T)"
