@@ -20,6 +20,13 @@ struct Structure {
   std::vector<BodyId> boxes;
 };
 
+// Sleeping off: the solver alone must bring the bodies to rest.
+void keepAwake(Structure& s) {
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(s.world.setBodySettings(settings));
+}
+
 // n unit cubes of 1 kg in a column, `gap` apart (touching by default).
 void stack(Structure& s, const int n, const Real gap = 0.0) {
   addGround(s.world);
@@ -72,9 +79,7 @@ TEST(Stacks, TwentyCubesStand) {
 TEST(Stacks, TwentyCubesStandAwake) {
   // Without sleeping the solver alone must hold them.
   Structure s;
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(s.world.setBodySettings(settings));
+  keepAwake(s);
   stack(s, 20);
   expectStands(s, "stack of 20, never asleep");
 }
@@ -116,9 +121,7 @@ TEST(Stacks, PyramidOfTwentyStands) {
 // at 4 substeps: 13 uJ).
 TEST(Stacks, PyramidOfTwentyComesToRestAwake) {
   Structure s;
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(s.world.setBodySettings(settings));
+  keepAwake(s);
   pyramid(s, 20);
   const BodyStore& bodies = s.world.bodies();
   const std::size_t top = *bodies.find(s.boxes.back());
@@ -193,9 +196,7 @@ TEST(Stacks, TheTwentyPyramidStandsWithOnePass) {
 // its velocity stayed 0 and the push-out carried it up, 3 cm deep.
 void expectColumnRides(const Vec3& speed, const Vec3& spin, const Real radius) {
   Structure s;
-  BodySettings settings;
-  settings.sleep = false;
-  ASSERT_TRUE(s.world.setBodySettings(settings));
+  keepAwake(s);
   BodySpec platform = body(box(Vec3(50.0, 50.0, 0.5)), 1.0, Vec3(0.0, 0.0, -0.5));
   platform.type = BodyType::kKinematic;
   platform.linear_velocity = speed;
@@ -219,7 +220,7 @@ void expectColumnRides(const Vec3& speed, const Vec3& spin, const Real radius) {
       "(%.4f %.4f %.4f), deepest %.2e m\n",
       v.x(), v.y(), v.z(), under.x(), under.y(), under.z(), deepest);
   EXPECT_LT((v - under).norm(), 0.03);
-  EXPECT_LT(deepest, settings.linear_slop);
+  EXPECT_LT(deepest, s.world.bodySettings().linear_slop);
 }
 
 TEST(Stacks, AColumnRidesAConveyor) { expectColumnRides(Vec3(1.0, 0.0, 0.0), Vec3::Zero(), 0.0); }
