@@ -64,6 +64,13 @@ class AnswerTimeTest(unittest.TestCase):
                             'no ~stats')
             return self.stats[-1]
 
+    def stats_from_step(self, step):
+        """The first ~stats of step `step` or later (waits up to 5 s for it)."""
+        with self.cond:
+            self.assertTrue(self.cond.wait_for(lambda: self.stats[-1].step >= step, 5.0),
+                            'no step %d' % step)
+            return next(m for m in self.stats if m.step >= step)
+
     def timed(self, what, proxy, request):
         """The answer; fails unless it came within LIMIT. A hung call fails after 5 s, not at
         the time limit."""
@@ -102,8 +109,11 @@ class AnswerTimeTest(unittest.TestCase):
                 answer = self.timed('valid request', self.apply_impulse, valid)
                 self.assertTrue(answer.success, answer.message)
             # The requests were applied between steps, not as extra steps: running, the world
-            # kept its 1 Hz schedule.
-            after = self.latest_stats()
+            # kept its 1 Hz schedule. Running, `after` is the third step from `before`, so that
+            # the factors below span the whole second from the second step to it (about 20
+            # ~stats) wherever in a second the rounds ended; taken when they ended, the span
+            # could be a fraction of a second (9 ~stats once).
+            after = self.latest_stats() if paused else self.stats_from_step(before.step + 3)
             elapsed = time.time() - begun
             steps = after.step - before.step
             if paused:
