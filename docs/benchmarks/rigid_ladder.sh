@@ -3,9 +3,10 @@
 # a regular expression over the benchmark names' scene part: ours at every setting registered,
 # then Bullet 3.24 (double, 10 iterations) at every substep count registered, sleeping off, one
 # program after the other. Build both first (scripts/bench.sh builds them), then from the
-# repository root, e.g. for the dropped pyramid (session 19):
-#   flock /tmp/mas_build.lock bash docs/benchmarks/rigid_ladder.sh DroppedPyramid \
-#     > docs/benchmarks/rigid_2026-11-28_session19_dropped_ladder.txt
+# repository root, e.g. for the dropped pyramid:
+#   flock /tmp/mas_build.lock bash docs/benchmarks/rigid_ladder.sh DroppedPyramid > OUT.txt
+# Session 19 ran that on a tried variant of the engine:
+# rigid_2026-11-28_session19_slop_gap_tried_dropped_ladder.txt.
 # Ours are named BM_Rigid<Scene>/..., Bullet's BM_Bullet_<Scene>/... except that Box2D's pyramid
 # and the stacks are BM_Bullet_Rigid<Scene>: a second regular expression, if given, is Bullet's.
 set -u
