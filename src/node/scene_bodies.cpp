@@ -120,8 +120,8 @@ void readBodySolver(XmlRpcValue& s, const std::string& k, engine::World& world) 
   checkKeys(s, k,
             {"substeps", "iterations", "relax_iterations", "contact_hertz", "contact_damping_ratio",
              "joint_hertz", "joint_damping_ratio", "max_push_speed", "speculative_distance",
-             "linear_slop", "restitution_threshold", "sleep", "sleep_speed", "time_to_sleep",
-             "continuous", "gyroscopic", "runaway_speed"});
+             "linear_slop", "min_twist_lever", "restitution_threshold", "sleep", "sleep_speed",
+             "time_to_sleep", "continuous", "gyroscopic", "runaway_speed"});
   engine::BodySettings b = world.bodySettings();
   b.substeps = intOr(s, k, "substeps", b.substeps);
   b.iterations = intOr(s, k, "iterations", b.iterations);
@@ -133,6 +133,7 @@ void readBodySolver(XmlRpcValue& s, const std::string& k, engine::World& world) 
   b.max_push_speed = realOr(s, k, "max_push_speed", b.max_push_speed);
   b.speculative_distance = realOr(s, k, "speculative_distance", b.speculative_distance);
   b.linear_slop = realOr(s, k, "linear_slop", b.linear_slop);
+  b.min_twist_lever = realOr(s, k, "min_twist_lever", b.min_twist_lever);
   b.restitution_threshold = realOr(s, k, "restitution_threshold", b.restitution_threshold);
   b.sleep = boolOr(s, k, "sleep", b.sleep);
   b.sleep_speed = realOr(s, k, "sleep_speed", b.sleep_speed);

@@ -201,6 +201,7 @@ std::string describeConfiguration(const PhysicsSettings& physics) {
       << "body_max_push_speed: " << exact(b.max_push_speed) << "\n"
       << "body_speculative_distance: " << exact(b.speculative_distance) << "\n"
       << "body_linear_slop: " << exact(b.linear_slop) << "\n"
+      << "body_min_twist_lever: " << exact(b.min_twist_lever) << "\n"
       << "body_restitution_threshold: " << exact(b.restitution_threshold) << "\n"
       << "body_sleep: " << boolText(b.sleep) << "\n"
       << "body_sleep_speed: " << exact(b.sleep_speed) << "\n"

@@ -104,6 +104,7 @@ inline bool sameSettings(const engine::BodySettings& a, const engine::BodySettin
          a.contact_damping_ratio == b.contact_damping_ratio && a.joint_hertz == b.joint_hertz &&
          a.joint_damping_ratio == b.joint_damping_ratio && a.max_push_speed == b.max_push_speed &&
          a.speculative_distance == b.speculative_distance && a.linear_slop == b.linear_slop &&
+         a.min_twist_lever == b.min_twist_lever &&
          a.restitution_threshold == b.restitution_threshold && a.sleep == b.sleep &&
          a.sleep_speed == b.sleep_speed && a.time_to_sleep == b.time_to_sleep &&
          a.continuous == b.continuous && a.gyroscopic == b.gyroscopic &&
@@ -566,6 +567,7 @@ inline void runEngineOps(const std::uint8_t* data, const std::size_t size) {
         if (which & (1u << 14)) s.continuous = !s.continuous;
         if (which & (1u << 15)) s.gyroscopic = !s.gyroscopic;
         if (which & (1u << 16)) s.runaway_speed = in.real();
+        if (which & (1u << 17)) s.min_twist_lever = in.real();
         accepted = world.setBodySettings(s).isOk();
         break;
       }

@@ -20,12 +20,12 @@ namespace {
 auto fields(const BodySettings& s) {
   return std::tie(s.substeps, s.iterations, s.relax_iterations, s.guess_loads, s.shock_propagation,
                   s.contact_hertz, s.contact_damping_ratio, s.joint_hertz, s.joint_damping_ratio,
-                  s.max_push_speed, s.speculative_distance, s.linear_slop, s.restitution_threshold,
-                  s.sleep, s.sleep_speed, s.time_to_sleep, s.continuous, s.gyroscopic,
-                  s.runaway_speed);
+                  s.max_push_speed, s.speculative_distance, s.linear_slop, s.min_twist_lever,
+                  s.restitution_threshold, s.sleep, s.sleep_speed, s.time_to_sleep, s.continuous,
+                  s.gyroscopic, s.runaway_speed);
 }
 // A field added to BodySettings changes its size: add it to fields() too, then restate the size.
-static_assert(sizeof(BodySettings) == 120, "BodySettings changed: list its fields in fields()");
+static_assert(sizeof(BodySettings) == 128, "BodySettings changed: list its fields in fields()");
 
 }  // namespace
 
@@ -51,7 +51,8 @@ Status validateBodySettings(const BodySettings& s) {
   for (const auto& [value, name] :
        {std::pair<Real, const char*>{s.contact_damping_ratio, "contact_damping_ratio"},
         {s.joint_damping_ratio, "joint_damping_ratio"},
-        {s.linear_slop, "linear_slop"}}) {
+        {s.linear_slop, "linear_slop"},
+        {s.min_twist_lever, "min_twist_lever"}}) {
     if (!std::isfinite(value) || value < 0.0) {
       return Status::error(std::string(name) + " must be finite and >= 0");
     }

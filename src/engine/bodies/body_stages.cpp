@@ -438,9 +438,13 @@ void generateBodyContacts(StepContext& ctx) {
       if (k != kNoBody) ws.solver[static_cast<std::size_t>(k)].held = true;
     }
     const bool still = sides.a == kNoBody || sides.b == kNoBody;
+    // A particle cannot turn: a twist on its contact would turn the body with nothing turning
+    // back, so the particle's point keeps no lever.
+    const Real min_twist_lever =
+        contact.key.other == ContactOther::kParticle ? 0.0 : settings.min_twist_lever;
     prepareContact(contact, static_cast<std::uint32_t>(c), sides, ws.solver,
-                   contactSoftness(settings, ctx.h, still), ws.kept_masses.of(contact).coupled,
-                   ws.constraints.emplace_back());
+                   contactSoftness(settings, ctx.h, still), min_twist_lever,
+                   ws.kept_masses.of(contact).coupled, ws.constraints.emplace_back());
     ws.constraint_sides.push_back(sides);
   }
   if (settings.guess_loads) {

@@ -28,8 +28,8 @@ struct ContactConstraintPoint {
   Real current = 0.0;
   Real normal_mass = 0.0;
   Real normal_impulse = 0.0;
-  // The point's distance from the manifold's centre in the contact plane: its lever against
-  // turning about the normal.
+  // The point's distance from the manifold's centre in the contact plane, at least
+  // BodySettings::min_twist_lever: its lever against turning about the normal.
   Real arm = 0.0;
 };
 

@@ -185,11 +185,11 @@ bool pseudoInverseInPlane(const ContactConstraint& c, const SolverBody& a, const
 // its closing speed (normal velocity plus bias) from closing(k) and its accumulated impulse in
 // totals[k]; j = -K^-1 closing (the precomputed block when every point takes part), applied by
 // apply(index, count, j) when every total stays >= 0; else a point whose total would pull leaves
-// and the rest are solved again. False when the set ran down to one point (the caller goes point
-// by point).
-template <typename Closing, typename Apply>
+// and the rest are solved again (one that has lifted off, lifted(k), giving back all it carried
+// first). False when the set ran down to one point (the caller goes point by point).
+template <typename Closing, typename Lifted, typename Apply>
 bool solveTogether(const ContactConstraint& c, const Sides& s, int* index, int count, Real* totals,
-                   Closing&& closing, Apply&& apply) {
+                   Closing&& closing, Lifted&& lifted, Apply&& apply) {
   for (int attempt = 0; attempt < Manifold::kMaxPoints && count > 1; ++attempt) {
     PointVector shared;
     if (count == c.count) {
@@ -214,7 +214,18 @@ bool solveTogether(const ContactConstraint& c, const Sides& s, int* index, int c
     }
     kept = 0;
     for (int i = 0; i < count; ++i) {
-      if (totals[index[i]] - shared[i] >= 0.0) index[kept++] = index[i];
+      const int k = index[i];
+      if (totals[k] - shared[i] >= 0.0) {
+        index[kept++] = k;
+        continue;
+      }
+      // Lifted off, it gives back all it carried: else its warm start goes on pushing a point
+      // in the air, and a tall box left on one edge rocks higher at every landing.
+      if (totals[k] != 0.0 && lifted(k)) {
+        const Real back = -totals[k];
+        totals[k] = 0.0;
+        apply(&k, 1, &back);
+      }
     }
     count = kept;
   }
@@ -251,7 +262,8 @@ void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
   const auto push = [&](const int* points, const int n, const Real* j) {
     pushNormals<false>(c, s, points, n, j);
   };
-  if (!solveTogether(c, s, index, count, totals, closing, push) && count == 1) {
+  const auto never = [](int) { return false; };
+  if (!solveTogether(c, s, index, count, totals, closing, never, push) && count == 1) {
     const int k = index[0];
     pushNormal<false>(c, s, k, std::max(-c.points[k].normal_mass * closing(k), 0.0));
   }
@@ -299,7 +311,8 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
     for (int i = 0; i < n; ++i) c.points[points[i]].normal_impulse += j[i];
     pushNormals<false>(c, s, points, n, j);
   };
-  if (!solveTogether(c, s, index, count, totals, closing, push)) {
+  const auto lifted = [&](const int k) { return separation[k] > pass.slop; };
+  if (!solveTogether(c, s, index, count, totals, closing, lifted, push)) {
     for (int k = 0; k < c.count; ++k) {
       ContactConstraintPoint& cp = c.points[k];
       Real total = std::max(cp.normal_impulse - cp.normal_mass * closing(k), 0.0);
@@ -327,7 +340,9 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   const auto pseudo_push = [&](const int* points, const int n, const Real* j) {
     pushNormals<true>(c, s, points, n, j);
   };
-  if (count > 0 && !solveTogether(c, s, index, count, pseudo_totals, pseudo_closing, pseudo_push)) {
+  const auto never = [](int) { return false; };
+  if (count > 0 &&
+      !solveTogether(c, s, index, count, pseudo_totals, pseudo_closing, never, pseudo_push)) {
     for (int i = 0; i < count; ++i) {
       const int k = index[i];
       const Real total =
@@ -464,8 +479,8 @@ void prepareMasses(const std::vector<SolverBody>& bodies, BodyContact::InvertedM
 
 void prepareContact(const BodyContact& contact, const std::uint32_t index,
                     const ContactSides& sides, const std::vector<SolverBody>& bodies,
-                    const Softness& softness, BodyContact::InvertedMass& inverted,
-                    ContactConstraint& c) {
+                    const Softness& softness, const Real min_twist_lever,
+                    BodyContact::InvertedMass& inverted, ContactConstraint& c) {
   c.a = sides.a;
   c.b = sides.b;
   c.contact = index;
@@ -483,7 +498,7 @@ void prepareContact(const BodyContact& contact, const std::uint32_t index,
     cp.r_b = mp.point - sides.center_b;
     cp.separation = mp.separation;
     cp.normal_impulse = contact.normal_impulses[k];
-    cp.arm = patch.offsets[k].norm();
+    cp.arm = std::max(patch.offsets[k].norm(), min_twist_lever);
   }
   c.center_a = patch.center - sides.center_a;
   c.center_b = patch.center - sides.center_b;

@@ -36,10 +36,12 @@ void tangentBasis(const Vec3& n, Vec3& t0, Vec3& t1);
 // Reads the contact's manifold and carried impulses into `c`, a default ContactConstraint made
 // where it is kept (a row is most of a kilobyte: built in place, it is not copied); keeps the
 // coupled mass's pseudo-inverse in `inverted` (one of the contact's) so that a resting contact
-// whose mass has not changed is not inverted again.
+// whose mass has not changed is not inverted again. No point's lever against turning about the
+// normal is shorter than min_twist_lever (BodySettings).
 void prepareContact(const BodyContact& contact, std::uint32_t index, const ContactSides& sides,
                     const std::vector<SolverBody>& bodies, const Softness& softness,
-                    BodyContact::InvertedMass& inverted, ContactConstraint& c);
+                    Real min_twist_lever, BodyContact::InvertedMass& inverted,
+                    ContactConstraint& c);
 // The row of a prepared contact c with one side held still (taking no impulse): c's geometry and
 // impulses, its masses again (inverted kept in `inverted`, as prepareContact keeps its own).
 void prepareHeldStill(const ContactConstraint& c, bool a_still,

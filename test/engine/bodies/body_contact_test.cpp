@@ -2,6 +2,7 @@
 // that bounces, a Coulomb slide, inclines that hold, slide and roll. Analytic answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -167,6 +168,66 @@ TEST(BodyContact, ASpinningCubeStopsWhereItsCornersFrictionSays) {
   EXPECT_LT(moved.norm(), 1e-6);
   EXPECT_LT(worst_force_sum, 1e-12);
   EXPECT_LT(worst_torque_error, 1e-9);
+}
+
+// A sphere touches the ground at one point, which has no lever against turning about the normal:
+// only BodySettings::min_twist_lever resists that spin.
+TEST(BodyContact, ASphereSpinningOnTheGroundSlowsByTheLeastTwistLever) {
+  const auto spin = [](const Real lever) {
+    World world(config());
+    BodySettings settings = world.bodySettings();
+    settings.sleep = false;
+    settings.min_twist_lever = lever;
+    EXPECT_TRUE(world.setBodySettings(settings));
+    addGround(world, Material{0.0, 0.5});
+    const Real r = 0.25;
+    BodySpec spec = body(sphere(r, Material{0.0, 0.5}), 1.0, Vec3(0.0, 0.0, r));
+    spec.angular_velocity = Vec3(0.0, 0.0, 1.0);
+    const std::size_t i = *world.bodies().find(*world.addBody(spec));
+    for (int step = 0; step < 60; ++step) world.step();
+    const Vec3 moved = world.bodies().position(i) - Vec3(0.0, 0.0, r);
+    EXPECT_LT(moved.norm(), 1e-9);
+    return world.bodies().angularVelocity(i);
+  };
+  // tau = mu m g d and I = 2/5 m r^2: w' = -mu g d / (2/5 r^2) = -0.19620 rad/s^2 for d = 1 mm,
+  // so after 1 s w = 1 - 0.19620 = 0.80380 rad/s about z.
+  EXPECT_EQ(BodySettings{}.min_twist_lever, 0.001);
+  const Vec3 slowed = spin(0.001);
+  const Vec3 kept = spin(0.0);
+  std::printf("[ twist ] w after 1 s: %.5f rad/s with a 1 mm lever, %.5f with none\n", slowed.z(),
+              kept.z());
+  EXPECT_NEAR(slowed.z(), 1.0 - 0.5 * kG * 0.001 / (0.4 * 0.25 * 0.25), 1e-3);
+  EXPECT_LT(slowed.head<2>().norm(), 1e-9);
+  EXPECT_NEAR(kept.z(), 1.0, 1e-12);
+}
+
+TEST(BodyContact, ATallBoxLeftOnOneEdgeRocksBackAndSettlesOnItsBase) {
+  // 24.5 x 21 x 55.2 cm, 27 g, tilted 2 degrees about y onto one bottom edge (the other 8.5 mm up):
+  // gravity turns it back onto its base, and with restitution 0 each landing can only take
+  // energy away. Its centre starts at h cos 2 + b sin 2 above the ground (h, b its half extents
+  // up and across the turn) and may never rise above that.
+  World world(config());
+  BodySettings settings = world.bodySettings();
+  settings.sleep = false;
+  ASSERT_TRUE(world.setBodySettings(settings));
+  addGround(world, Material{0.0, 0.5});
+  const Vec3 half(0.1225, 0.105, 0.276);
+  const Real tilt = 2.0 * M_PI / 180.0;
+  const Real start = half.z() * std::cos(tilt) + half.x() * std::sin(tilt);
+  const Quat q(Eigen::AngleAxis<Real>(tilt, Vec3::UnitY()));
+  const BodyId id =
+      *world.addBody(body(box(half, Material{0.0, 0.5}), 0.027, Vec3(0.0, 0.0, start), q));
+  const std::size_t i = *world.bodies().find(id);
+  Real highest = 0.0;
+  for (int step = 0; step < 600; ++step) {
+    world.step();
+    highest = std::max(highest, world.bodies().position(i).z());
+  }
+  std::printf("[ rock ] centre at most %.5f m (started at %.5f), at 10 s %.5f m, KE %.1e J\n",
+              highest, start, world.bodies().position(i).z(), world.kineticEnergy());
+  EXPECT_LE(highest, start + 1e-4);
+  EXPECT_NEAR(world.bodies().position(i).z(), half.z(), 1e-3);  // on its base, not its side
+  EXPECT_LT(world.kineticEnergy(), 1e-9);
 }
 
 // The cube on the ground sliding from v0 along `direction` (in the plane):

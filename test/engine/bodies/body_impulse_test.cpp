@@ -67,6 +67,30 @@ TEST(BodyImpulse, AParticleDroppedOnABodysBoxMovesIt) {
   EXPECT_LT(worst, 1e-9);
 }
 
+TEST(BodyImpulse, AParticleLandingOnASpinningBodysAxisLeavesItsSpin) {
+  // On the axis the body's surface does not move under the particle: no friction, and a particle
+  // cannot turn, so its contact has no twist (BodySettings::min_twist_lever) to take the spin.
+  World world(config(0.0));
+  BodySpec spec = body(box(Vec3(1.0, 1.0, 0.25)), 2.0, Vec3::Zero());
+  spec.angular_velocity = Vec3(0.0, 0.0, 1.0);
+  const std::size_t i = *world.bodies().find(*world.addBody(spec));
+  ParticleSpec particle;
+  particle.position = Vec3(0.0, 0.0, 1.0);
+  particle.velocity = Vec3(0.0, 0.0, -3.0);
+  particle.inverse_mass = 1.0 / 0.5;
+  particle.radius = 0.05;
+  const ParticleId p = *world.addParticle(particle);
+  ASSERT_TRUE(world.setParticleMaterial(p, Material{0.0, 0.5}));
+  for (int step = 0; step < 60; ++step) world.step();
+  const Vec3 w = world.bodies().angularVelocity(i);
+  std::printf("[ axis ] body w (%.3e %.3e %.15f) rad/s, body %.4f m/s down\n", w.x(), w.y(), w.z(),
+              -world.bodies().linearVelocity(i).z());
+  EXPECT_LT(world.bodies().linearVelocity(i).z(), -0.1);  // the particle hit it
+  EXPECT_GT(world.particles().velocities().col(*world.particles().find(p)).z(), -3.0 + 0.1);
+  EXPECT_NEAR(w.z(), 1.0, 1e-12);
+  EXPECT_LT(w.head<2>().norm(), 1e-12);
+}
+
 TEST(BodyImpulse, RefusedRequestsChangeNothing) {
   World world(config());
   const BodyId id = *world.addBody(body(box(Vec3::Constant(0.5)), 1.0, Vec3::Zero()));

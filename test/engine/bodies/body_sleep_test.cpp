@@ -369,9 +369,11 @@ TEST(BodySleep, NewBodySettingsWakeEveryBodyAndTheSameOnesNone) {
               asleep(same.world, s.apart));
   // Any field that differs counts, the first and the last of the struct among them.
   const std::vector<std::function<void(BodySettings&)>> changes = {
-      [](BodySettings& b) { b.substeps += 1; }, [](BodySettings& b) { b.iterations += 1; },
+      [](BodySettings& b) { b.substeps += 1; },
+      [](BodySettings& b) { b.iterations += 1; },
       [](BodySettings& b) { b.guess_loads = !b.guess_loads; },
       [](BodySettings& b) { b.shock_propagation = !b.shock_propagation; },
+      [](BodySettings& b) { b.min_twist_lever *= 2.0; },
       [](BodySettings& b) { b.runaway_speed *= 2.0; }};
   for (std::size_t k = 0; k < changes.size(); ++k) {
     SleepingScene changed = s;

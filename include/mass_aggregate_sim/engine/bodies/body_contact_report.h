@@ -16,7 +16,8 @@ namespace engine {
 // substep (normal >= 0, and friction along the surface: the impulse body a gives the other side,
 // which gives body a the opposite). The solver's friction acts on the contact as a whole (a force
 // at the points' centre and a torque about the normal); the points' friction impulses are its
-// least-norm split, with the same sum and the same torque.
+// least-norm split, with the same sum and the same torque (a one-point contact's torque, from
+// BodySettings::min_twist_lever, has no second point to act through and is not in its point).
 struct BodyContactReport {
   enum class Other : std::uint8_t { kBody, kCollider, kParticle };
   BodyId body;

@@ -44,6 +44,13 @@ struct BodySettings {
   Real speculative_distance = 0.02;
   // Overlap (m) left alone, so resting contacts do not jitter; what a pile may settle into.
   Real linear_slop = 0.00005;
+  // The least lever (m) of a contact's friction against turning about its normal: a point
+  // contact is a small patch in fact, and a body held by two points with none would turn about
+  // the line through them for ever, a pendulum without loss (a box pinched between two corners
+  // in a pile, keeping its island awake). A contact resists that turn with up to
+  // mu sum_k j_k max(arm_k, min_twist_lever), arm_k a point's distance from the contact's centre
+  // (a particle's contact: arm_k alone, since a particle cannot turn back).
+  Real min_twist_lever = 0.001;
   // Closing speeds (m/s) below this do not bounce (restitution acts above it).
   Real restitution_threshold = 1.0;
   // Sleeping: an island whose every body has been slower than sleep_speed (m/s, at any point of
@@ -73,7 +80,7 @@ inline bool operator!=(const BodySettings& a, const BodySettings& b) { return !(
 
 // Finite values in range: substeps in [1, 64], iterations in [1, 64], relax iterations in
 // [0, 64], frequencies > 0, damping ratios >= 0, speeds,
-// distances and times > 0 (slop >= 0).
+// distances and times > 0 (slop and twist lever >= 0).
 Status validateBodySettings(const BodySettings& settings);
 
 }  // namespace engine
