@@ -8,7 +8,7 @@
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
 //   /tmp/rocking_box_probe 2 0.1225 0.105 0.276 0.027  # tilt (degrees), half extents, mass
 // Switches (sleeping is off): NOGUESS, NOSHOCK, NOCCD, SUB=n, ITER=n, RELAX=n, HZ=x (contact
-// hertz), SPEC=x (speculative distance).
+// hertz), SPEC=x (speculative distance), PUSH=x (max push speed), MU=x (friction, 0.5).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -38,10 +38,9 @@ int main(int argc, char** argv) {
   if (getenv("RELAX")) s.relax_iterations = atoi(getenv("RELAX"));
   if (getenv("HZ")) s.contact_hertz = atof(getenv("HZ"));
   if (getenv("SPEC")) s.speculative_distance = atof(getenv("SPEC"));
-  if (!world.setBodySettings(s)) return 1;
-  const double mu = getenv("MU") ? atof(getenv("MU")) : 0.5;
   if (getenv("PUSH")) s.max_push_speed = atof(getenv("PUSH"));
   if (!world.setBodySettings(s)) return 1;
+  const double mu = getenv("MU") ? atof(getenv("MU")) : 0.5;
   addGround(world, Material{0.0, mu});
   const Quat q(Eigen::AngleAxisd(degrees * M_PI / 180.0, Vec3::UnitY()));
   // Placed with its lowest corner on the ground.
