@@ -232,6 +232,9 @@ bool solveTogether(const ContactConstraint& c, const Sides& s, int* index, int c
   return false;
 }
 
+// For the impacts and the push-out, whose totals start from zero each time: nothing to give back.
+bool neverLifted(int /*point*/) { return false; }
+
 // The impact of contact c: its closing points at once, so that each separates at e |v_n| (the
 // speed it closed at), through their coupled mass (those that would pull left out).
 void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
@@ -262,8 +265,7 @@ void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
   const auto push = [&](const int* points, const int n, const Real* j) {
     pushNormals<false>(c, s, points, n, j);
   };
-  const auto never = [](int) { return false; };
-  if (!solveTogether(c, s, index, count, totals, closing, never, push) && count == 1) {
+  if (!solveTogether(c, s, index, count, totals, closing, neverLifted, push) && count == 1) {
     const int k = index[0];
     pushNormal<false>(c, s, k, std::max(-c.points[k].normal_mass * closing(k), 0.0));
   }
@@ -297,12 +299,14 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   Real totals[Manifold::kMaxPoints];
   int index[Manifold::kMaxPoints];
   int count = 0;
+  // A point further apart than the slop has lifted off (within the slop it touches: a face
+  // landing flat must not split into points either side of zero).
+  const auto lifted = [&](const int k) { return separation[k] > pass.slop; };
   for (int k = 0; k < c.count; ++k) {
     separation[k] = c.points[k].current;
     totals[k] = c.points[k].normal_impulse;
-    // Relaxing, a point further apart than the slop counts as a gap (within the slop, as
-    // touching: a face landing flat must not split into points either side of zero).
-    if (pass.use_bias || separation[k] <= pass.slop) index[count++] = k;
+    // Relaxing, a lifted point counts as a gap.
+    if (pass.use_bias || !lifted(k)) index[count++] = k;
   }
   const auto closing = [&](const int k) {
     return normalVelocity(c, c.points[k], s) + std::max(separation[k], 0.0) * inverse_h;
@@ -311,12 +315,11 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
     for (int i = 0; i < n; ++i) c.points[points[i]].normal_impulse += j[i];
     pushNormals<false>(c, s, points, n, j);
   };
-  const auto lifted = [&](const int k) { return separation[k] > pass.slop; };
   if (!solveTogether(c, s, index, count, totals, closing, lifted, push)) {
     for (int k = 0; k < c.count; ++k) {
       ContactConstraintPoint& cp = c.points[k];
       Real total = std::max(cp.normal_impulse - cp.normal_mass * closing(k), 0.0);
-      if (!pass.use_bias && separation[k] > pass.slop) total = std::min(total, cp.normal_impulse);
+      if (!pass.use_bias && lifted(k)) total = std::min(total, cp.normal_impulse);
       const Real j = total - cp.normal_impulse;
       cp.normal_impulse = total;
       pushNormal<false>(c, s, k, j);
@@ -340,9 +343,8 @@ void solveNormals(ContactConstraint& c, Sides& s, const ContactPass& pass, const
   const auto pseudo_push = [&](const int* points, const int n, const Real* j) {
     pushNormals<true>(c, s, points, n, j);
   };
-  const auto never = [](int) { return false; };
   if (count > 0 &&
-      !solveTogether(c, s, index, count, pseudo_totals, pseudo_closing, never, pseudo_push)) {
+      !solveTogether(c, s, index, count, pseudo_totals, pseudo_closing, neverLifted, pseudo_push)) {
     for (int i = 0; i < count; ++i) {
       const int k = index[i];
       const Real total =
