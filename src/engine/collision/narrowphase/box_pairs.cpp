@@ -1,6 +1,7 @@
 // Box against box: the separating-axis test over the 15 axes (each box's 3 face normals, the 9
 // crossings of their edge directions), then either a face contact (the incident face clipped to
-// the reference face) or one point between two edges.
+// the reference face) or one point between two edges. An edge pair whose axis lies within
+// kNearFaceSine of a face normal is that face's contact.
 //
 // Ids: face contact = (reference is B) << 12 | reference face << 9 | incident face << 6 | clip
 // code (face_clip.h), faces numbered by boxFaceIndex; edge contact = 1 << 13 | A's edge << 4 |
@@ -24,6 +25,13 @@ namespace {
 
 constexpr std::uint32_t kReferenceIsB = 1u << 12;
 constexpr std::uint32_t kEdgeContact = 1u << 13;
+// An edge of one box lying along the other's face, tilted by a hair, beats that face in the
+// separating-axis test: the face axis overstates the overlap by the overhang (the edge's far end
+// lies past the face's plane, beyond the face). The edge pair's one point then sits at one end of
+// the stretch where the edge lies on the face and jumps to the other end when the tilt turns, so
+// the box pivots about either end in turn. Up to this sine (0.29 degrees) the face decides: its
+// clip gives both ends. A wider band (0.02) left piles livelier (docs/BENCHMARKS.md, session 21).
+constexpr Real kNearFaceSine = 5e-3;
 
 // The best (largest separation) axis of one family; direction in A's frame, from A towards B.
 struct BestAxis {
@@ -161,13 +169,27 @@ Manifold collide(const BoxShape& a, const Frame& fa, const BoxShape& b, const Fr
   const Real tolerance = kFeatureTolerance * std::min(ha.minCoeff(), hb.minCoeff());
   const bool reference_b = face_b.separation > face_a.separation + tolerance;
   const Real face_separation = reference_b ? face_b.separation : face_a.separation;
+  const auto contactOnFaceOfA = [&](const int axis) {
+    return faceContact(ha, fa, hb, fb, axis, margin, 0);
+  };
+  const auto contactOnFaceOfB = [&](const int axis) {
+    Manifold manifold = faceContact(hb, fb, ha, fa, axis, margin, kReferenceIsB);
+    manifold.normal = -manifold.normal;
+    return manifold;
+  };
   if (edge.index >= 0 && edge.separation > face_separation + tolerance) {
+    int axis_a = 0;
+    int axis_b = 0;
+    const Real cosine_a = edge.direction.cwiseAbs().maxCoeff(&axis_a);
+    const Real cosine_b = (c.transpose() * edge.direction).cwiseAbs().maxCoeff(&axis_b);
+    if (std::max(cosine_a, cosine_b) >= std::sqrt(1.0 - kNearFaceSine * kNearFaceSine)) {
+      const Manifold manifold =
+          cosine_a >= cosine_b ? contactOnFaceOfA(axis_a) : contactOnFaceOfB(axis_b);
+      if (manifold.count > 0) return manifold;
+    }
     return edgeContact(a, fa, b, fb, c, edge.index / 3, edge.index % 3, edge.direction, margin);
   }
-  if (!reference_b) return faceContact(ha, fa, hb, fb, face_a.index, margin, 0);
-  Manifold manifold = faceContact(hb, fb, ha, fa, face_b.index, margin, kReferenceIsB);
-  manifold.normal = -manifold.normal;
-  return manifold;
+  return reference_b ? contactOnFaceOfB(face_b.index) : contactOnFaceOfA(face_a.index);
 }
 
 }  // namespace engine

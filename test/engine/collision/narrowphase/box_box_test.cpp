@@ -140,6 +140,35 @@ TEST(NarrowphaseBoxBox, OnItsEdgeGivesTheEdgesTwoEnds) {
   }
 }
 
+TEST(NarrowphaseBoxBox, ALongEdgeLyingAcrossAFaceTouchesAtBothEndsOfTheFace) {
+  // A 2 m beam on its edge across the unit cube's top face, 2 mm deep at the middle, that edge
+  // tilted by a hair about y. The face axis overstates the overlap by the overhang, so an edge
+  // pair (the beam's edge across one of the cube's top edges) separates them by less; its one
+  // point would sit at one end of the face and jump to the other when the tilt turns.
+  const BoxShape beam{Vec3(1.0, 0.2, 0.2)};
+  const auto beamTilted = [](const Real degrees) {
+    return frameAt(Vec3(0.0, 0.1, 0.5 + 0.2 * std::sqrt(2.0) - 0.002),
+                   about(Vec3::UnitY(), degrees * M_PI / 180.0) * about(Vec3::UnitX(), M_PI / 4));
+  };
+  for (const Real degrees : {0.05, 0.2, -0.2}) {
+    SCOPED_TRACE(degrees);
+    const Manifold m = collide(kCube, frameAt(Vec3::Zero()), beam, beamTilted(degrees), 0.02);
+    expectNormal(m, Vec3::UnitZ());
+    // The beam's edge lies 0.5 tan(tilt) lower at x = +0.5 than at its middle, higher at -0.5
+    // (and 0.28 (1 / cos(tilt) - 1) lower throughout: under 2e-6 m).
+    const Real drop = 0.5 * std::tan(degrees * M_PI / 180.0);
+    expectPoints(m,
+                 {{Vec3(0.5, 0.1, 0.5 - 0.5 * (0.002 + drop)), -0.002 - drop},
+                  {Vec3(-0.5, 0.1, 0.5 - 0.5 * (0.002 - drop)), -0.002 + drop}},
+                 2e-6);
+  }
+  // Beyond the band (1 degree, sine 0.017) the edge pair stands: one point, at the deeper end.
+  const Manifold m = collide(kCube, frameAt(Vec3::Zero()), beam, beamTilted(1.0), 0.02);
+  ASSERT_EQ(m.count, 1);
+  EXPECT_NEAR(m.points[0].point.x(), 0.5, 1e-3);
+  EXPECT_NEAR(m.points[0].separation, -0.002 - 0.5 * std::tan(M_PI / 180.0), 1e-4);
+}
+
 TEST(NarrowphaseBoxBox, CrossingEdgesGiveOnePoint) {
   // A's top edge runs along x at z = sqrt(1/2); B's bottom edge along y, 0.01 lower.
   const Frame fa = frameAt(Vec3::Zero(), about(Vec3::UnitX(), M_PI / 4));
