@@ -10,7 +10,9 @@
 //
 // Each case builds its scene and simulates 10 s untimed (their mean cost per frame is settle_ms;
 // the worst and mean deepest overlap over their last 3 s are late_max_pen_m and late_mean_pen_m,
-// the bodies that moved more than 1 mm and 1 cm over them late_moved_mm and late_moved_cm),
+// the bodies that moved more than 1 mm and 1 cm over them late_moved_mm and late_moved_cm, the
+// bodies in free fall over the last frame in_flight and the others' kinetic energy inside the walls
+// pile_kinetic_J),
 // records the at-rest quality then (counters, rigid_report.h), and times a fixed number of further
 // frames: Time and CPU are per frame (1/60 s, all its substeps), one thread.
 #include <benchmark/benchmark.h>
@@ -33,7 +35,6 @@ namespace bench {
 namespace rigid {
 namespace {
 
-constexpr double kFrameSeconds = 1.0 / 60.0;
 constexpr int kSolverIterations = 10;
 
 btVector3 toBullet(const Eigen::Vector3d& v) {
@@ -113,21 +114,9 @@ class BulletWorld {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const BodySpec& spec = scene_.bodies[i];
       if (spec.isFixed()) continue;
-      const btRigidBody& body = *bodies_[i];
-      const btVector3& v = body.getLinearVelocity();
-      const btVector3 w =
-          body.getWorldTransform().getBasis().transpose() * body.getAngularVelocity();
-      const btVector3& inertia = body.getLocalInertia();
-      result.kinetic_energy +=
-          0.5 * (spec.mass * static_cast<double>(v.length2()) +
-                 static_cast<double>(inertia.x() * w.x() * w.x() + inertia.y() * w.y() * w.y() +
-                                     inertia.z() * w.z() * w.z()));
-      const btVector3& p = body.getWorldTransform().getOrigin();
-      const bool outside =
-          scene_.inner_half_width > 0.0 &&
-          (std::abs(p.x()) > scene_.inner_half_width || std::abs(p.y()) > scene_.inner_half_width);
-      if (outside || p.z() < scene_.ground.height) ++result.escaped;
-      if (!body.isActive()) ++result.asleep;
+      result.kinetic_energy += kineticEnergy(i);
+      if (hasEscaped(scene_, position(i))) ++result.escaped;
+      if (!bodies_[i]->isActive()) ++result.asleep;
     }
     if (scene_.top_body >= 0) {
       const Eigen::Vector3d& start = scene_.bodies[scene_.top_body].position;
@@ -145,6 +134,22 @@ class BulletWorld {
   Eigen::Vector3d position(const std::size_t k) const {
     const btVector3& p = bodies_[k]->getWorldTransform().getOrigin();
     return Eigen::Vector3d(p.x(), p.y(), p.z());
+  }
+
+  Eigen::Vector3d linearVelocity(const std::size_t k) const {
+    const btVector3& v = bodies_[k]->getLinearVelocity();
+    return Eigen::Vector3d(v.x(), v.y(), v.z());
+  }
+
+  // m v^2 / 2 + w_b . I w_b / 2, w_b the angular velocity in the body's principal frame.
+  double kineticEnergy(const std::size_t k) const {
+    const btRigidBody& body = *bodies_[k];
+    const btVector3& v = body.getLinearVelocity();
+    const btVector3 w = body.getWorldTransform().getBasis().transpose() * body.getAngularVelocity();
+    const btVector3& inertia = body.getLocalInertia();
+    return 0.5 * (scene_.bodies[k].mass * static_cast<double>(v.length2()) +
+                  static_cast<double>(inertia.x() * w.x() * w.x() + inertia.y() * w.y() * w.y() +
+                                      inertia.z() * w.z() * w.z()));
   }
 
   double deepestOverlap() const {

@@ -27,7 +27,7 @@ inline engine::BodyShapeSpec engineShapeOf(const BodySpec& spec) {
 inline engine::World engineWorld(const RigidScene& scene, const engine::BodySettings& settings,
                                  std::vector<engine::BodyId>* ids = nullptr) {
   engine::WorldConfig config;
-  config.dt = 1.0 / 60.0;
+  config.dt = kFrameSeconds;
   config.gravity = scene.gravity;
   engine::World world = *engine::World::create(config);
   world.setBodySettings(settings);

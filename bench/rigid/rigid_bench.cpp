@@ -12,9 +12,10 @@
 // Each case builds its scene and simulates 10 s untimed, recording the mean cost of a frame over
 // those 10 s (settle_ms: the falling, stacking and settling a user watches), the worst and mean
 // deepest overlap over their last 3 s (late_max_pen_m, late_mean_pen_m), how many bodies moved
-// more than 1 mm and 1 cm over those 3 s (late_moved_mm, late_moved_cm) and the at-rest quality
-// at their end (counters, rigid_report.h); then it times a fixed number of further frames: Time
-// and CPU are per frame, one thread.
+// more than 1 mm and 1 cm over those 3 s (late_moved_mm, late_moved_cm), how many were in free fall
+// over the last frame (in_flight), the kinetic energy of the others inside the walls
+// (pile_kinetic_J) and the at-rest quality at their end (counters, rigid_report.h); then it times
+// a fixed number of further frames: Time and CPU are per frame, one thread.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -56,15 +57,9 @@ class EngineWorld {
     const engine::BodyStore& bodies = world_.bodies();
     for (std::size_t k = 0; k < ids_.size(); ++k) {
       if (scene_.bodies[k].isFixed()) continue;
+      result.kinetic_energy += kineticEnergy(k);
       const std::size_t i = *bodies.find(ids_[k]);
-      const Vec3 w = bodies.orientation(i).conjugate() * bodies.angularVelocity(i);
-      result.kinetic_energy += 0.5 * (bodies.mass(i) * bodies.linearVelocity(i).squaredNorm() +
-                                      w.dot(bodies.principalInertia(i).cwiseProduct(w)));
-      const Vec3& p = bodies.position(i);
-      const bool outside =
-          scene_.inner_half_width > 0.0 &&
-          (std::abs(p.x()) > scene_.inner_half_width || std::abs(p.y()) > scene_.inner_half_width);
-      if (outside || p.z() < scene_.ground.height) ++result.escaped;
+      if (hasEscaped(scene_, bodies.position(i))) ++result.escaped;
       if (!bodies.awake(i)) ++result.asleep;
     }
     if (scene_.top_body >= 0) {
@@ -84,6 +79,20 @@ class EngineWorld {
   Vec3 position(const std::size_t k) const {
     const engine::BodyStore& bodies = world_.bodies();
     return bodies.position(*bodies.find(ids_[k]));
+  }
+
+  Vec3 linearVelocity(const std::size_t k) const {
+    const engine::BodyStore& bodies = world_.bodies();
+    return bodies.linearVelocity(*bodies.find(ids_[k]));
+  }
+
+  // m v^2 / 2 + w_b . I w_b / 2, w_b the angular velocity in the body's principal frame.
+  double kineticEnergy(const std::size_t k) const {
+    const engine::BodyStore& bodies = world_.bodies();
+    const std::size_t i = *bodies.find(ids_[k]);
+    const Vec3 w = bodies.orientation(i).conjugate() * bodies.angularVelocity(i);
+    return 0.5 * (bodies.mass(i) * bodies.linearVelocity(i).squaredNorm() +
+                  w.dot(bodies.principalInertia(i).cwiseProduct(w)));
   }
 
   double deepestOverlap() const {

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -57,8 +58,19 @@ struct RigidScene {
   double wall_height = 0.0;
 };
 
+// Every scene runs at 60 Hz.
+constexpr double kFrameSeconds = 1.0 / 60.0;
+
 // A structure stood when its top body ended within this distance of where it started.
 constexpr double kStoodTolerance = 0.01;
+
+// A dynamic body at `position` is outside the scene's walls or below its ground.
+inline bool hasEscaped(const RigidScene& scene, const Eigen::Vector3d& position) {
+  const bool outside =
+      scene.inner_half_width > 0.0 && (std::abs(position.x()) > scene.inner_half_width ||
+                                       std::abs(position.y()) > scene.inner_half_width);
+  return outside || position.z() < scene.ground.height;
+}
 
 constexpr double kBoxDensity = 1.0;
 constexpr double kRainSphereRadius = 0.03;

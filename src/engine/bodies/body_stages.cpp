@@ -8,6 +8,7 @@
 #include "engine/bodies/body_motion.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
+#include "engine/collision/narrowphase/any_shape.h"
 #include "engine/core/prefetch.h"
 #include "engine/forces/body_force_stage.h"
 #include "engine/integrators/integrators.h"
@@ -386,9 +387,10 @@ void generateBodyContacts(StepContext& ctx) {
     }
     ws.first_particle = ws.solver.size();
   }
-  const auto side = [&](const ShapeIndex s, Vec3& center) {
+  const auto side = [&](const ShapeIndex s, Vec3& center, Real& rounding) {
     const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[s].body);
     center = bodies.position(i);
+    rounding = shapeRounding(bodies.shapes()[s].geometry);
     return ws.solver_of_body[i];
   };
   // The rows bottom up along gravity (by each contact's first point; ties in key order), of the
@@ -418,10 +420,10 @@ void generateBodyContacts(StepContext& ctx) {
     const std::uint32_t c = order[i].second;
     BodyContact& contact = ws.contacts[c];
     ContactSides sides;
-    sides.a = side(contact.key.shape, sides.center_a);
+    sides.a = side(contact.key.shape, sides.center_a, sides.rounding_a);
     switch (contact.key.other) {
       case ContactOther::kShape:
-        sides.b = side(static_cast<ShapeIndex>(contact.key.b), sides.center_b);
+        sides.b = side(static_cast<ShapeIndex>(contact.key.b), sides.center_b, sides.rounding_b);
         break;
       case ContactOther::kCollider:
         sides.b = kNoBody;

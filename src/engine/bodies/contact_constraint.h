@@ -22,8 +22,9 @@ struct ContactConstraintPoint {
   // less than reading it.
   Vec3 r_a = Vec3::Zero();
   Vec3 r_b = Vec3::Zero();
-  // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors;
-  // `current` is that, taken once a substep (the anchors move only between substeps).
+  // The separation when prepared: now it is that plus n.(d_b - d_a), d the moves of the anchors
+  // (of their cores' points on a rounded side); `current` is that, taken once a substep (the
+  // anchors move only between substeps).
   Real separation = 0.0;
   Real current = 0.0;
   Real normal_mass = 0.0;
@@ -41,6 +42,10 @@ struct ContactConstraint {
   std::uint32_t contact = 0;  // index into the step's contacts
   Real inverse_mass_a = 0.0;
   Real inverse_mass_b = 0.0;
+  // Each side's rounding (BodyShapeKind::rounding): a point's anchor on a rounded side is its
+  // core's point, which turns with the body, plus the rounding along the normal, which does not.
+  Real rounding_a = 0.0;
+  Real rounding_b = 0.0;
   Vec3 normal = Vec3::UnitZ();
   Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitY()};
   Real friction = 0.0;

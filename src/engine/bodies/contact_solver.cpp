@@ -78,20 +78,35 @@ void pushNormal(const ContactConstraint& c, Sides& s, const int k, const Real j)
 //   n.(d_b - d_a), d = dp + dq r - r the move of a point fixed to a body at r from its centre,
 // and n.(dq r - r) = (dq^T n - n).r: the normal is taken back into each side's starting frame
 // once for all the points, leaving a dot product per point and side.
+// On a rounded side the fixed point is the core's, r - rho n on a (r + rho n on b), rho = the
+// rounding + s / 2 (the point is midway across the gap s): the core's point turns, the offset
+// rho n does not. So a ball's turn, which carries its surface's points up off the ground
+// (r (1 - cos theta): almost half its radius at a radian a step), leaves its contact where it is.
+// The correction on a is rho (dq^T n - n).n, and likewise on b: a dot product per side.
 class NormalDisplacement {
  public:
   NormalDisplacement(const ContactConstraint& c, const Sides& s)
       : shift_(c.normal.dot(s.b.dp - s.a.dp)),
         back_a_(s.a.dq_matrix.transpose() * c.normal - c.normal),
-        back_b_(s.b.dq_matrix.transpose() * c.normal - c.normal) {}
+        back_b_(s.b.dq_matrix.transpose() * c.normal - c.normal),
+        turn_a_(c.rounding_a > 0.0 ? back_a_.dot(c.normal) : 0.0),
+        turn_b_(c.rounding_b > 0.0 ? back_b_.dot(c.normal) : 0.0),
+        rounding_a_(c.rounding_a),
+        rounding_b_(c.rounding_b) {}
   Real of(const ContactConstraintPoint& cp) const {
-    return shift_ + back_b_.dot(cp.r_b) - back_a_.dot(cp.r_a);
+    const Real half_gap = 0.5 * cp.separation;
+    return shift_ + back_b_.dot(cp.r_b) - back_a_.dot(cp.r_a) + (rounding_a_ + half_gap) * turn_a_ +
+           (rounding_b_ + half_gap) * turn_b_;
   }
 
  private:
   Real shift_;
   Vec3 back_a_;
   Vec3 back_b_;
+  Real turn_a_;
+  Real turn_b_;
+  Real rounding_a_;
+  Real rounding_b_;
 };
 
 // The separation of point cp now: as prepared, moved on by the anchors' displacements since.
@@ -485,6 +500,8 @@ void prepareContact(const BodyContact& contact, const std::uint32_t index,
                     BodyContact::InvertedMass& inverted, ContactConstraint& c) {
   c.a = sides.a;
   c.b = sides.b;
+  c.rounding_a = sides.rounding_a;
+  c.rounding_b = sides.rounding_b;
   c.contact = index;
   c.normal = contact.manifold.normal;
   tangentBasis(c.normal, c.tangent[0], c.tangent[1]);

@@ -20,13 +20,16 @@
 namespace mass_aggregate_sim {
 namespace engine {
 
-// One contact's sides as the solver sees them: solver bodies (kNoBody: never moves) and the
-// centres of mass the anchors are measured from.
+// One contact's sides as the solver sees them: solver bodies (kNoBody: never moves), the
+// centres of mass the anchors are measured from, and each side shape's rounding
+// (BodyShapeKind::rounding; 0 for a collider or a particle, which do not turn).
 struct ContactSides {
   std::int32_t a = kNoBody;
   std::int32_t b = kNoBody;
   Vec3 center_a = Vec3::Zero();
   Vec3 center_b = Vec3::Zero();
+  Real rounding_a = 0.0;
+  Real rounding_b = 0.0;
 };
 
 // A tangent basis of n: t0 = a unit vector perpendicular to n chosen from n alone (the same n

@@ -17,6 +17,11 @@
 //   describe(k)                  how it is drawn (ShapePrimitive parts in the shape's frame)
 //   submerged(k, frame, surface) the part of the shape placed at frame below a liquid surface,
 //                                exact (its volume and first moment: buoyancy that rights a body)
+//   rounding(k)                  the radius by which the shape is its core swept (a sphere's
+//                                centre, a capsule's segment; a box: 0, its own core). A contact
+//                                on it lies that far along the normal from the core's nearest
+//                                point: that point turns with the body, the offset does not (a
+//                                rolling ball's contact stays below its centre)
 
 #include <optional>
 #include <vector>

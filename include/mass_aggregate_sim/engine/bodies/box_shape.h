@@ -26,6 +26,7 @@ struct BodyShapeKind<BoxShape> {
   static std::vector<ShapePrimitive> describe(const BoxShape& box);
   static SubmergedVolume submerged(const BoxShape& box, const Frame& frame,
                                    const LiquidSurface& surface);
+  static constexpr Real rounding(const BoxShape&) { return 0.0; }
 };
 
 }  // namespace engine

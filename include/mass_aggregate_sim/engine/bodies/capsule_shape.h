@@ -29,6 +29,7 @@ struct BodyShapeKind<CapsuleShape> {
   static std::vector<ShapePrimitive> describe(const CapsuleShape& capsule);
   static SubmergedVolume submerged(const CapsuleShape& capsule, const Frame& frame,
                                    const LiquidSurface& surface);
+  static constexpr Real rounding(const CapsuleShape& capsule) { return capsule.radius; }
 };
 
 }  // namespace engine

@@ -26,6 +26,7 @@ struct BodyShapeKind<SphereShape> {
   static std::vector<ShapePrimitive> describe(const SphereShape& sphere);
   static SubmergedVolume submerged(const SphereShape& sphere, const Frame& frame,
                                    const LiquidSurface& surface);
+  static constexpr Real rounding(const SphereShape& sphere) { return sphere.radius; }
 };
 
 }  // namespace engine

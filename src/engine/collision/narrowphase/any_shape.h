@@ -24,8 +24,13 @@ Manifold collideAnyWith(const AnyBodyShape& a, const Frame& fa, const B& b, cons
 
 inline Manifold collideAnyWithPlane(const AnyBodyShape& a, const Frame& fa, const Vec3& normal,
                                     const Real offset, const Real margin) {
+  return std::visit([&](const auto& x) { return collideWithPlane(x, fa, normal, offset, margin); },
+                    a);
+}
+
+inline Real shapeRounding(const AnyBodyShape& shape) {
   return std::visit(
-      [&](const auto& x) { return collideWithPlane(x, fa, normal, offset, margin); }, a);
+      [](const auto& x) { return BodyShapeKind<std::decay_t<decltype(x)>>::rounding(x); }, shape);
 }
 
 inline Aabb shapeBounds(const AnyBodyShape& shape, const Frame& frame) {
