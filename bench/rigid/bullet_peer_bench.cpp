@@ -250,10 +250,11 @@ void BM_Bullet_RigidStack(benchmark::State& state) {
   runScene(state, stack(static_cast<int>(state.range(0))));
 }
 void BM_Bullet_RandomDrop(benchmark::State& state) {
-  runScene(state, randomDrop(static_cast<int>(state.range(0)), randomDropSeed()));
+  runScene(state,
+           randomDrop(static_cast<int>(state.range(0)), benchmarkSeed(kRandomDropDefaultSeed)));
 }
 void BM_Bullet_ParticleRain(benchmark::State& state) {
-  runScene(state, particleRain(static_cast<int>(state.range(0))));
+  runScene(state, particleRain(static_cast<int>(state.range(0)), benchmarkSeed(kRainDefaultSeed)));
 }
 
 BENCHMARK(BM_Bullet_RigidPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20, 16>);

@@ -174,10 +174,11 @@ void BM_RigidStack(benchmark::State& state) {
   runScene(state, stack(static_cast<int>(state.range(0))));
 }
 void BM_RigidRandomDrop(benchmark::State& state) {
-  runScene(state, randomDrop(static_cast<int>(state.range(0)), randomDropSeed()));
+  runScene(state,
+           randomDrop(static_cast<int>(state.range(0)), benchmarkSeed(kRandomDropDefaultSeed)));
 }
 void BM_RigidParticleRain(benchmark::State& state) {
-  runScene(state, particleRain(static_cast<int>(state.range(0))));
+  runScene(state, particleRain(static_cast<int>(state.range(0)), benchmarkSeed(kRainDefaultSeed)));
 }
 
 BENCHMARK(BM_RigidPyramid)->Apply(runs<20, 600>)->Apply(ladderRuns<20>)->Args({20, 8, 0, 1});

@@ -121,7 +121,7 @@ RigidScene randomDrop(const int n, const std::uint64_t seed) {
   constexpr double kLowest = 1.0;
   RigidScene scene;
   scene.name = "random_drop/" + std::to_string(n);
-  if (seed != 1) scene.name += ", seed " + std::to_string(seed);
+  if (seed != kRandomDropDefaultSeed) scene.name += ", seed " + std::to_string(seed);
   addWalls(scene, 5.5, 0.25, 3.0);
   SplitMix64 rng(seed);
   const double first = -0.5 * kSpacing * (kPerSide - 1);
@@ -141,9 +141,9 @@ RigidScene randomDrop(const int n, const std::uint64_t seed) {
   return scene;
 }
 
-std::uint64_t randomDropSeed() {
+std::uint64_t benchmarkSeed(const std::uint64_t otherwise) {
   const char* const text = std::getenv("MAS_RIGID_SEED");
-  return text != nullptr ? std::strtoull(text, nullptr, 10) : 1;
+  return text != nullptr ? std::strtoull(text, nullptr, 10) : otherwise;
 }
 
 RigidScene particleRain(const int spheres, const std::uint64_t seed) {
@@ -155,6 +155,7 @@ RigidScene particleRain(const int spheres, const std::uint64_t seed) {
   constexpr double kLayerGap = 0.5;
   RigidScene scene = stack(kStackHeight);
   scene.name = "particle_rain/" + std::to_string(spheres);
+  if (seed != kRainDefaultSeed) scene.name += ", seed " + std::to_string(seed);
   addWalls(scene, 1.25, 0.1, 2.0);
   SplitMix64 rng(seed);
   const double first = -0.5 * kSpacing * (kPerSide - 1);

@@ -102,12 +102,14 @@ RigidScene stack(int n);
 // bounding sphere is at most 0.52 m), layers 1.05 m apart from z = 1 m up (z = 10.45 m for the
 // tenth layer of 100); they fall into a pile inside four fixed walls (boxes 0.5 m thick and 3 m
 // tall whose inner faces are 5.5 m from the centre). The walls come first in `bodies`.
-RigidScene randomDrop(int n, std::uint64_t seed = 1);
+constexpr std::uint64_t kRandomDropDefaultSeed = 1;
+RigidScene randomDrop(int n, std::uint64_t seed = kRandomDropDefaultSeed);
 
-// The random drop's seed in the benchmarks: MAS_RIGID_SEED if set (a pile's at-rest overlap
-// depends on how its boxes happened to wedge, so its figures are compared over several seeds),
-// else 1.
-std::uint64_t randomDropSeed();
+// The random drop's and the rain's seed in the benchmarks: MAS_RIGID_SEED if set (a pile's
+// at-rest overlap depends on how its boxes happened to wedge, and how many spheres the rain throws
+// over its walls on how they happened to land, so their figures are compared over several seeds),
+// else `otherwise` (each scene's default seed).
+std::uint64_t benchmarkSeed(std::uint64_t otherwise);
 
 // A stack of five unit cubes of 1 kg (as stack(5)) and `spheres` spheres of radius 3 cm and
 // 0.1 kg raining onto it: layers of 20 x 20 spheres 0.1 m apart (each moved at random by up to
@@ -115,7 +117,8 @@ std::uint64_t randomDropSeed();
 // restitution 0. Four fixed walls (0.2 m thick, 2 m tall, inner faces 1.25 m from the centre)
 // keep the spheres that miss the stack from rolling away for ever. The walls come after the
 // stack's boxes; the top body is the top box.
-RigidScene particleRain(int spheres = kRainDefaultSpheres, std::uint64_t seed = 2);
+constexpr std::uint64_t kRainDefaultSeed = 2;
+RigidScene particleRain(int spheres = kRainDefaultSpheres, std::uint64_t seed = kRainDefaultSeed);
 
 // SplitMix64 (Steele, Lea and Flood 2014): the generators draw from it instead of std::
 // distributions, whose results differ between standard libraries.

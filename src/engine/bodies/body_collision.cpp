@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "engine/collision/narrowphase/any_shape.h"
+#include "engine/collision/narrowphase/swept_contact.h"
 #include "engine/core/sort_runs.h"
 
 namespace mass_aggregate_sim {
@@ -252,6 +253,13 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
                                   bodies.angularVelocity(i).norm() * bodies.reach(i))
                     : 0.0;
   }
+  // The part of a body's travel its turning makes: a swept contact (swept_contact.h) does not
+  // advance rotation, and keeps a pair that passes within it.
+  const auto turning = [&](const std::size_t i) {
+    return scene.settings.continuous && bodies.awake(i)
+               ? scene.dt * bodies.angularVelocity(i).norm() * bodies.reach(i)
+               : 0.0;
+  };
   const auto travelOf = [&](const ShapeIndex s) {
     return travel[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
   };
@@ -320,9 +328,12 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       const auto sb = static_cast<ShapeIndex>(std::max(proxyIndex(x), proxyIndex(y)));
       const BodyShape& a = bodies.shapes()[sa];
       const BodyShape& b = bodies.shapes()[sb];
+      const std::size_t ia = bodies.denseIndexUnchecked(a.body);
+      const std::size_t ib = bodies.denseIndexUnchecked(b.body);
       keep(ContactKey{ContactOther::kShape, sa, sb},
-           collideAny(a.geometry, frameOf(sa), b.geometry, frameOf(sb),
-                      speculative + travelOf(sa) + travelOf(sb)),
+           sweptContact(SweptShape{a.geometry, frameOf(sa), bodies.linearVelocity(ia)},
+                        SweptShape{b.geometry, frameOf(sb), bodies.linearVelocity(ib)},
+                        speculative + travel[ia] + travel[ib], turning(ia) + turning(ib), scene.dt),
            combineMaterials(a.material, b.material));
       continue;
     }

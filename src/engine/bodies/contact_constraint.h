@@ -51,6 +51,9 @@ struct ContactConstraint {
   Real friction = 0.0;
   Real restitution = 0.0;
   Softness softness;
+  // A swept contact (Manifold::slide): its anchors are the touching points themselves, not
+  // points midway across the gap.
+  bool swept = false;
   // The contact's impact has been resolved this step (restitution): its normal rows rest until
   // the next step, which does not warm start them.
   bool impact = false;

@@ -79,7 +79,8 @@ void pushNormal(const ContactConstraint& c, Sides& s, const int k, const Real j)
 // and n.(dq r - r) = (dq^T n - n).r: the normal is taken back into each side's starting frame
 // once for all the points, leaving a dot product per point and side.
 // On a rounded side the fixed point is the core's, r - rho n on a (r + rho n on b), rho = the
-// rounding + s / 2 (the point is midway across the gap s): the core's point turns, the offset
+// rounding + s / 2 (the point is midway across the gap s; a swept contact's anchors are the
+// touching points themselves, rho = the rounding): the core's point turns, the offset
 // rho n does not. So a ball's turn, which carries its surface's points up off the ground
 // (r (1 - cos theta): almost half its radius at a radian a step), leaves its contact where it is.
 // The correction on a is rho (dq^T n - n).n, and likewise on b: a dot product per side.
@@ -92,9 +93,10 @@ class NormalDisplacement {
         turn_a_(c.rounding_a > 0.0 ? back_a_.dot(c.normal) : 0.0),
         turn_b_(c.rounding_b > 0.0 ? back_b_.dot(c.normal) : 0.0),
         rounding_a_(c.rounding_a),
-        rounding_b_(c.rounding_b) {}
+        rounding_b_(c.rounding_b),
+        swept_(c.swept) {}
   Real of(const ContactConstraintPoint& cp) const {
-    const Real half_gap = 0.5 * cp.separation;
+    const Real half_gap = swept_ ? 0.0 : 0.5 * cp.separation;
     return shift_ + back_b_.dot(cp.r_b) - back_a_.dot(cp.r_a) + (rounding_a_ + half_gap) * turn_a_ +
            (rounding_b_ + half_gap) * turn_b_;
   }
@@ -107,6 +109,7 @@ class NormalDisplacement {
   Real turn_b_;
   Real rounding_a_;
   Real rounding_b_;
+  bool swept_;
 };
 
 // The separation of point cp now: as prepared, moved on by the anchors' displacements since.
@@ -510,17 +513,28 @@ void prepareContact(const BodyContact& contact, const std::uint32_t index,
   c.softness = softness;
   c.count = contact.manifold.count;
   const ContactPatch patch = contactPatch(contact.manifold);
+  // Each side's anchor of a point: a swept contact's are its sides' touching points
+  // (Manifold::slide), which the friction turns about.
+  const Vec3& slide = contact.manifold.slide;
+  c.swept = !slide.isZero(0.0);
+  const auto anchors = [&](const Vec3& point, Vec3& r_a, Vec3& r_b) {
+    if (c.swept) {
+      r_a = point - 0.5 * slide - sides.center_a;
+      r_b = point + 0.5 * slide - sides.center_b;
+    } else {
+      r_a = point - sides.center_a;
+      r_b = point - sides.center_b;
+    }
+  };
   for (int k = 0; k < c.count; ++k) {
     const ManifoldPoint& mp = contact.manifold.points[k];
     ContactConstraintPoint& cp = c.points[k];
-    cp.r_a = mp.point - sides.center_a;
-    cp.r_b = mp.point - sides.center_b;
+    anchors(mp.point, cp.r_a, cp.r_b);
     cp.separation = mp.separation;
     cp.normal_impulse = contact.normal_impulses[k];
     cp.arm = std::max(patch.offsets[k].norm(), min_twist_lever);
   }
-  c.center_a = patch.center - sides.center_a;
-  c.center_b = patch.center - sides.center_b;
+  anchors(patch.center, c.center_a, c.center_b);
   c.friction_impulse[0] = contact.friction_impulse.dot(c.tangent[0]);
   c.friction_impulse[1] = contact.friction_impulse.dot(c.tangent[1]);
   c.twist_impulse = contact.twist_impulse;

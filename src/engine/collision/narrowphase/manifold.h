@@ -25,6 +25,10 @@ struct ManifoldPoint {
 struct Manifold {
   static constexpr int kMaxPoints = 4;
   Vec3 normal = Vec3::UnitZ();
+  // A swept contact's (swept_contact.h): where b's touching point starts from a's (b moves that
+  // much against a before they touch). The points lie midway: a's touching point is
+  // point - slide / 2, b's point + slide / 2. Zero for a contact made where the shapes are.
+  Vec3 slide = Vec3::Zero();
   int count = 0;
   std::array<ManifoldPoint, kMaxPoints> points{};
 };
