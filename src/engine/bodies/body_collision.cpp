@@ -253,13 +253,6 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
                                   bodies.angularVelocity(i).norm() * bodies.reach(i))
                     : 0.0;
   }
-  // The part of a body's travel its turning makes: a swept contact (swept_contact.h) does not
-  // advance rotation, and keeps a pair that passes within it.
-  const auto turning = [&](const std::size_t i) {
-    return scene.settings.continuous && bodies.awake(i)
-               ? scene.dt * bodies.angularVelocity(i).norm() * bodies.reach(i)
-               : 0.0;
-  };
   const auto travelOf = [&](const ShapeIndex s) {
     return travel[bodies.denseIndexUnchecked(bodies.shapes()[s].body)];
   };
@@ -333,7 +326,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       keep(ContactKey{ContactOther::kShape, sa, sb},
            sweptContact(SweptShape{a.geometry, frameOf(sa), bodies.linearVelocity(ia)},
                         SweptShape{b.geometry, frameOf(sb), bodies.linearVelocity(ib)},
-                        speculative + travel[ia] + travel[ib], turning(ia) + turning(ib), scene.dt),
+                        speculative + travel[ia] + travel[ib], scene.dt),
            combineMaterials(a.material, b.material));
       continue;
     }

@@ -594,6 +594,29 @@ TEST(BodyContact, AFastBallFallingPastAnotherKeepsItsPath) {
   EXPECT_NEAR(world.bodies().position(i).z(), 0.15 - 11.0 * 3.0 / 60.0, 1e-12);
 }
 
+// And one pushed towards the ball it passes within the step (here by a sideways gravity of
+// 300 m/s^2, 2.8 cm by the time they are level) meets it: the pair's contact is the plane they
+// pass across, not none. Without one, it ended the first step 1.6 cm into the ball and went on
+// through it.
+TEST(BodyContact, AFastBallPushedTowardsABallItPassesDoesNotGoThroughIt) {
+  WorldConfig pushed = config(0.0);
+  pushed.gravity = Vec3(-300.0, 0.0, 0.0);
+  World world(pushed);
+  BodySpec resting = body(sphere(0.03), 0.1, Vec3::Zero());
+  resting.type = BodyType::kFixed;
+  ASSERT_TRUE(world.addBody(resting).isOk());
+  BodySpec falling = body(sphere(0.03), 0.1, Vec3(0.07, 0.0, 0.15));
+  falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
+  const BodyId id = *world.addBody(falling);
+  for (int step = 0; step < 3; ++step) {
+    world.step();
+    const Vec3 p = world.bodies().position(*world.bodies().find(id));
+    std::printf("[ swept ] step %d: centre at (%.4f, %.4f, %.4f), %.5f m from the other's\n", step,
+                p.x(), p.y(), p.z(), p.norm());
+    EXPECT_GT(p.norm(), 0.06 - world.bodySettings().linear_slop) << "step " << step;
+  }
+}
+
 // And one that meets it on the way lands where they touch, along the line of their centres then.
 TEST(BodyContact, AFastBallMeetsABallItFallsOntoAlongTheTouchNormal) {
   World world(config(0.0));
