@@ -576,17 +576,22 @@ TEST(BodyContact, AFastBallBouncesOffAThinWallAtItsSpeed) {
   EXPECT_NEAR(x, 1.94 - 300.0 * (3.0 / 60.0 - 1.94 / 300.0), 1e-6);
 }
 
+// A 3 cm ball falling at 11 m/s past a fixed one at the origin, 1 cm wide of it, 15 cm above.
+BodyId addBallFallingPastABall(World& world) {
+  BodySpec resting = body(sphere(0.03), 0.1, Vec3::Zero());
+  resting.type = BodyType::kFixed;
+  EXPECT_TRUE(world.addBody(resting).isOk());
+  BodySpec falling = body(sphere(0.03), 0.1, Vec3(0.07, 0.0, 0.15));
+  falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
+  return *world.addBody(falling);
+}
+
 // A speculative contact made where a fast pair starts stopped a ball on a plane across its fall
 // that the other ball never reaches (swept_contact.h): this one, passing 1 cm wide of a ball at
 // rest, left at 4.0 m/s sideways and 53 rad/s.
 TEST(BodyContact, AFastBallFallingPastAnotherKeepsItsPath) {
   World world(config(0.0));
-  BodySpec resting = body(sphere(0.03), 0.1, Vec3::Zero());
-  resting.type = BodyType::kFixed;
-  ASSERT_TRUE(world.addBody(resting).isOk());
-  BodySpec falling = body(sphere(0.03), 0.1, Vec3(0.07, 0.0, 0.15));
-  falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
-  const BodyId id = *world.addBody(falling);
+  const BodyId id = addBallFallingPastABall(world);
   for (int step = 0; step < 3; ++step) world.step();
   const std::size_t i = *world.bodies().find(id);
   EXPECT_EQ(world.bodies().linearVelocity(i), Vec3(0.0, 0.0, -11.0));
@@ -602,12 +607,7 @@ TEST(BodyContact, AFastBallPushedTowardsABallItPassesDoesNotGoThroughIt) {
   WorldConfig pushed = config(0.0);
   pushed.gravity = Vec3(-300.0, 0.0, 0.0);
   World world(pushed);
-  BodySpec resting = body(sphere(0.03), 0.1, Vec3::Zero());
-  resting.type = BodyType::kFixed;
-  ASSERT_TRUE(world.addBody(resting).isOk());
-  BodySpec falling = body(sphere(0.03), 0.1, Vec3(0.07, 0.0, 0.15));
-  falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
-  const BodyId id = *world.addBody(falling);
+  const BodyId id = addBallFallingPastABall(world);
   for (int step = 0; step < 3; ++step) {
     world.step();
     const Vec3 p = world.bodies().position(*world.bodies().find(id));
