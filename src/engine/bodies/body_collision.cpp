@@ -334,11 +334,19 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     const std::uint64_t collider_data = proxyKind(x) == ProxyKind::kShape ? y : x;
     const auto s = static_cast<ShapeIndex>(proxyIndex(shape_data));
     const BodyShape& shape = bodies.shapes()[s];
+    const Frame& frame = frameOf(s);
+    const Vec3& velocity = bodies.linearVelocity(bodies.denseIndexUnchecked(shape.body));
+    const Real margin = speculative + travelOf(s);
     withCollider(scene.colliders, proxyIndex(collider_data), [&](const auto& collider) {
       using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
-      Manifold manifold;
-      Kind::bodyContact(collider, shape.geometry, frameOf(s), speculative + travelOf(s), manifold);
-      keep(ContactKey{ContactOther::kCollider, s, collider.id}, manifold,
+      const auto collide_at = [&](const Real t) {
+        Manifold manifold;
+        Kind::bodyContact(collider, shape.geometry,
+                          Frame(frame.position + t * velocity, frame.rotation), margin, manifold);
+        return manifold;
+      };
+      keep(ContactKey{ContactOther::kCollider, s, collider.id},
+           sweptContact(collide_at, velocity, Vec3::Zero(), scene.dt),
            combineMaterials(shape.material, colliderMaterial(collider)));
     });
   }
@@ -371,9 +379,10 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
                                     scene.collisions.particle_friction};
     const auto v = particles.velocities();
     for (std::size_t p = 0; p < particles.size(); ++p) {
-      const Vec3 center = x.col(p);
+      const Vec3 velocity = v.col(p);
+      const Vec3 center = x.col(p) - scene.particle_lead * velocity;
       const Real r = radius[p];
-      const Real margin = speculative + scene.dt * v.col(p).norm();
+      const Real margin = speculative + scene.dt * velocity.norm();
       const Aabb box{center - Vec3::Constant(r + margin), center + Vec3::Constant(r + margin)};
       const ParticleId id = particles.idAt(p);
       ws.tree.query(box, [&](const std::int32_t proxy) {
@@ -382,9 +391,16 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
         const auto s = static_cast<ShapeIndex>(proxyIndex(data));
         const BodyShape& shape = bodies.shapes()[s];
         if (holds(ws.joined_particles, IdPair{shape.body.packed(), id.packed()})) return true;
+        const Frame& frame = frameOf(s);
+        const Vec3& body_velocity = bodies.linearVelocity(bodies.denseIndexUnchecked(shape.body));
+        const Real pair_margin = margin + travelOf(s);
+        const auto collide_at = [&](const Real t) {
+          return collideAnyWith(
+              shape.geometry, Frame(frame.position + t * body_velocity, frame.rotation),
+              SphereShape{r}, Frame(center + t * velocity, Mat3::Identity()), pair_margin);
+        };
         keep(ContactKey{ContactOther::kParticle, s, id.packed()},
-             collideAnyWith(shape.geometry, frameOf(s), SphereShape{r},
-                            Frame(center, Mat3::Identity()), margin + travelOf(s)),
+             sweptContact(collide_at, body_velocity, velocity, scene.dt),
              combineMaterials(shape.material, scene.materials.of(id.index, particle_default)));
         return true;
       });

@@ -31,6 +31,9 @@ struct BodyCollisionScene {
   // particle) from touching: their contacts would fight it.
   const Joints& joints;
   Real dt;
+  // The particles' positions are the integrator's prediction for the substep, this times their
+  // velocity ahead of where they move from (beta h, storeParticles): they are met from there.
+  Real particle_lead;
 };
 
 // Puts every shape in the tree (new ones), moves the awake bodies' shapes, and remakes the

@@ -22,10 +22,16 @@ namespace {
 // twice as far the contact itself (generateBodyContacts).
 constexpr std::size_t kPrefetchAhead = 4;
 
+// Before the positions stage a particle's position is already the integrator's prediction,
+// which a velocity change dv moves on by beta h dv (storeParticles): the particle moves from
+// x - beta h v, and its rows see it there, so that v' + s / h >= 0 keeps a gap open at the
+// substep's end as for a body.
+Real particleLead(const StepContext& ctx) { return positionWeight(ctx.config.integrator) * ctx.h; }
+
 BodyCollisionScene collisionScene(const StepContext& ctx) {
-  return BodyCollisionScene{*ctx.bodies,        ctx.colliders,  ctx.colliders_version,
-                            ctx.particles,      ctx.collisions, ctx.materials,
-                            *ctx.body_settings, *ctx.joints,    ctx.dt};
+  return BodyCollisionScene{*ctx.bodies,    ctx.colliders,    ctx.colliders_version, ctx.particles,
+                            ctx.collisions, ctx.materials,    *ctx.body_settings,    *ctx.joints,
+                            ctx.dt,         particleLead(ctx)};
 }
 
 // Contacts soften at most to a quarter of the substep rate (stiffer would be unstable); against
@@ -55,16 +61,18 @@ std::int32_t particleSolverBody(StepContext& ctx, const std::size_t p) {
 }
 
 // The particles' solver bodies take their velocities and moves from the particle store (the
-// particle integrator and contact phase moved them since).
-void loadParticles(StepContext& ctx) {
+// particle integrator and contact phase moved them since): from where they move, before the
+// positions stage (`predicted`, particleLead).
+void loadParticles(StepContext& ctx, const bool predicted) {
   BodyWorkspace& ws = *ctx.body_ws;
   const auto x = ctx.particles.positions();
   const auto v = ctx.particles.velocities();
+  const Real lead = predicted ? particleLead(ctx) : 0.0;
   for (std::size_t k = 0; k < ws.particle_of_solver.size(); ++k) {
     const auto p = static_cast<Eigen::Index>(ws.particle_of_solver[k]);
     SolverBody& sb = ws.solver[ws.first_particle + k];
     sb.v = v.col(p);
-    sb.dp = x.col(p) - ws.particle_start.col(static_cast<Eigen::Index>(k));
+    sb.dp = x.col(p) - lead * sb.v - ws.particle_start.col(static_cast<Eigen::Index>(k));
     ws.particle_velocity.col(static_cast<Eigen::Index>(k)) = sb.v;
   }
 }
@@ -87,7 +95,16 @@ void storeParticles(StepContext& ctx, const bool move) {
     }
     v.col(p) = sb.v;
   }
-  if (!ws.particle_of_solver.empty()) ctx.integration.acceleration_valid = false;
+  if (ws.particle_of_solver.empty()) return;
+  IntegratorState& integration = ctx.integration;
+  integration.acceleration_valid = false;
+  if (ctx.config.integrator == Integrator::kPositionVerlet &&
+      integration.verlet_history_h == ctx.h) {
+    for (const std::uint32_t p : ws.particle_of_solver) {
+      seedVerletHistory(ctx.particles, ctx.caches.damping, p, ctx.h,
+                        integration.acceleration.col(p));
+    }
+  }
 }
 
 // A joint end as a side of its row: its solver body (kNoBody for the world, a fixed or sleeping
@@ -106,9 +123,10 @@ void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3
     return;
   }
   if (end.isParticle()) {
-    const std::size_t p = ctx.particles.denseIndexUnchecked(end.particle);
-    solver = particleSolverBody(ctx, p);
-    center = ctx.particles.positions().col(static_cast<Eigen::Index>(p));
+    const auto p = static_cast<Eigen::Index>(ctx.particles.denseIndexUnchecked(end.particle));
+    solver = particleSolverBody(ctx, static_cast<std::size_t>(p));
+    center =
+        ctx.particles.positions().col(p) - particleLead(ctx) * ctx.particles.velocities().col(p);
     return;
   }
   solver = kNoBody;
@@ -467,20 +485,24 @@ void generateBodyContacts(StepContext& ctx) {
   }
   prepareShockRows(ctx);
   prepareJoints(ctx);
-  // The particles' positions now: their solver bodies' moves are measured from here.
+  // Where the particles move from (particleLead): their solver bodies' moves are measured from
+  // here.
   const auto count = static_cast<Eigen::Index>(ws.particle_of_solver.size());
   ws.particle_start.resize(3, count);
   ws.particle_velocity.resize(3, count);
   const auto x = ctx.particles.positions();
+  const auto v = ctx.particles.velocities();
+  const Real lead = particleLead(ctx);
   for (Eigen::Index k = 0; k < count; ++k) {
-    ws.particle_start.col(k) = x.col(static_cast<Eigen::Index>(ws.particle_of_solver[k]));
+    const auto p = static_cast<Eigen::Index>(ws.particle_of_solver[k]);
+    ws.particle_start.col(k) = x.col(p) - lead * v.col(p);
   }
   ws.prepared = !ws.solver.empty();
 }
 
 void solveBodyConstraints(StepContext& ctx) {
   if (!ctx.bodies || !ctx.body_ws->prepared) return;
-  loadParticles(ctx);
+  loadParticles(ctx, true);
   warmStart(ctx);
   for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
   BodyWorkspace& ws = *ctx.body_ws;
@@ -503,7 +525,7 @@ void integrateBodyPositions(StepContext& ctx) {
     sb.pw.setZero();
   }
   if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
-  loadParticles(ctx);
+  loadParticles(ctx, false);
   takeSeparations(ws.constraints, ws.solver);
   for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false, i % 2 == 1);
   storeParticles(ctx, false);

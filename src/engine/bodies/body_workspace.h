@@ -67,7 +67,7 @@ struct BodyWorkspace {
   std::vector<std::uint32_t>
       particle_of_solver;  // dense particle index of solver[first_particle + k]
   std::size_t first_particle = 0;
-  Vec3Array particle_start;     // their positions when the step began
+  Vec3Array particle_start;     // where they moved from when the step began (particleLead)
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
   std::vector<ContactConstraint> constraints;
   std::vector<ContactSides> constraint_sides;  // each constraint's sides as prepared

@@ -576,14 +576,40 @@ TEST(BodyContact, AFastBallBouncesOffAThinWallAtItsSpeed) {
   EXPECT_NEAR(x, 1.94 - 300.0 * (3.0 / 60.0 - 1.94 / 300.0), 1e-6);
 }
 
-// A 3 cm ball falling at 11 m/s past a fixed one at the origin, 1 cm wide of it, 15 cm above.
-BodyId addBallFallingPastABall(World& world) {
-  BodySpec resting = body(sphere(0.03), 0.1, Vec3::Zero());
+// No gravity, the body solver at `substeps`.
+World weightlessWorld(const int substeps) {
+  World world(config(0.0));
+  BodySettings settings;
+  settings.substeps = substeps;
+  EXPECT_TRUE(world.setBodySettings(settings));
+  return world;
+}
+
+// A fixed 3 cm ball at the origin.
+void addFixedBall(World& world, const Material& material = {0.0, 0.5}) {
+  BodySpec resting = body(sphere(0.03, material), 0.1, Vec3::Zero());
   resting.type = BodyType::kFixed;
   EXPECT_TRUE(world.addBody(resting).isOk());
+}
+
+// A 3 cm ball falling at 11 m/s past what is at the origin, 1 cm wide of a 3 cm ball there, 15 cm
+// above.
+BodyId addBallFallingPastTheOrigin(World& world) {
   BodySpec falling = body(sphere(0.03), 0.1, Vec3(0.07, 0.0, 0.15));
   falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
   return *world.addBody(falling);
+}
+
+BodyId addBallFallingPastABall(World& world) {
+  addFixedBall(world);
+  return addBallFallingPastTheOrigin(world);
+}
+
+// A ball that met nothing on its way.
+void expectStillFalling(const World& world, const BodyId id) {
+  const std::size_t i = *world.bodies().find(id);
+  EXPECT_EQ(world.bodies().linearVelocity(i), Vec3(0.0, 0.0, -11.0));
+  EXPECT_EQ(world.bodies().angularVelocity(i), Vec3::Zero());
 }
 
 // A speculative contact made where a fast pair starts stopped a ball on a plane across its fall
@@ -593,10 +619,9 @@ TEST(BodyContact, AFastBallFallingPastAnotherKeepsItsPath) {
   World world(config(0.0));
   const BodyId id = addBallFallingPastABall(world);
   for (int step = 0; step < 3; ++step) world.step();
-  const std::size_t i = *world.bodies().find(id);
-  EXPECT_EQ(world.bodies().linearVelocity(i), Vec3(0.0, 0.0, -11.0));
-  EXPECT_EQ(world.bodies().angularVelocity(i), Vec3::Zero());
-  EXPECT_NEAR(world.bodies().position(i).z(), 0.15 - 11.0 * 3.0 / 60.0, 1e-12);
+  expectStillFalling(world, id);
+  EXPECT_NEAR(world.bodies().position(*world.bodies().find(id)).z(), 0.15 - 11.0 * 3.0 / 60.0,
+              1e-12);
 }
 
 // And one pushed towards the ball it passes within the step (here by a sideways gravity of
@@ -620,9 +645,7 @@ TEST(BodyContact, AFastBallPushedTowardsABallItPassesDoesNotGoThroughIt) {
 // And one that meets it on the way lands where they touch, along the line of their centres then.
 TEST(BodyContact, AFastBallMeetsABallItFallsOntoAlongTheTouchNormal) {
   World world(config(0.0));
-  BodySpec resting = body(sphere(0.03, Material{0.0, 0.0}), 0.1, Vec3::Zero());
-  resting.type = BodyType::kFixed;
-  ASSERT_TRUE(world.addBody(resting).isOk());
+  addFixedBall(world, Material{0.0, 0.0});
   const Real side = 0.06 * std::sqrt(0.5);
   BodySpec falling = body(sphere(0.03, Material{0.0, 0.0}), 0.1, Vec3(side, 0.0, side + 0.12));
   falling.linear_velocity = Vec3(0.0, 0.0, -11.0);
@@ -646,10 +669,7 @@ TEST(BodyContact, AFastBallMeetsABallItFallsOntoAlongTheTouchNormal) {
 // 2.43 m/s, 24 degrees off the tangent: not asserted here.)
 TEST(BodyContact, AFastBallFallingOnABallObliquelyLeavesRolling) {
   for (const int substeps : {2, 4, 8}) {
-    World world(config(0.0));
-    BodySettings settings;
-    settings.substeps = substeps;
-    ASSERT_TRUE(world.setBodySettings(settings));
+    World world = weightlessWorld(substeps);
     constexpr Real kRadius = 0.03;
     constexpr Real kSpeed = 4.4;
     BodySpec resting = body(sphere(kRadius), 0.1, Vec3::Zero());
@@ -673,6 +693,86 @@ TEST(BodyContact, AFastBallFallingOnABallObliquelyLeavesRolling) {
     EXPECT_LT(angleBetween(v, Vec3(1.0, 0.0, -1.0)), 1e-2) << substeps << " substeps";
     EXPECT_NEAR(w.y(), rolling / kRadius, 0.01 * rolling / kRadius) << substeps << " substeps";
   }
+}
+
+// The same ghost came between bodies and particles, and bodies and colliders, whose contacts were
+// still made where the pair starts.
+ParticleSpec fastParticle(const Vec3& position) {
+  ParticleSpec spec;
+  spec.position = position;
+  spec.velocity = Vec3(0.0, 0.0, -11.0);
+  spec.inverse_mass = 10.0;
+  spec.radius = 0.03;
+  return spec;
+}
+
+Vec3 particleVelocity(const World& world, const ParticleId id) {
+  return world.particles().velocities().col(*world.particles().find(id));
+}
+
+// This particle left at 6.37 m/s sideways.
+TEST(BodyContact, AFastParticleFallingPastABallKeepsItsPath) {
+  World world(config(0.0));
+  addFixedBall(world);
+  const ParticleId id = *world.addParticle(fastParticle(Vec3(0.07, 0.0, 0.15)));
+  for (int step = 0; step < 3; ++step) world.step();
+  EXPECT_EQ(particleVelocity(world, id), Vec3(0.0, 0.0, -11.0));
+  const Vec3 x = world.particles().positions().col(*world.particles().find(id));
+  EXPECT_NEAR(x.z(), 0.15 - 11.0 * 3.0 / 60.0, 1e-12);
+}
+
+// Both left at 2.63 m/s sideways, the particle pushed out of the ball's way.
+TEST(BodyContact, AFastBallFallingPastAParticleLeavesItBe) {
+  World world(config(0.0));
+  ParticleSpec resting = fastParticle(Vec3::Zero());
+  resting.velocity = Vec3::Zero();
+  const ParticleId particle = *world.addParticle(resting);
+  const BodyId ball = addBallFallingPastTheOrigin(world);
+  for (int step = 0; step < 3; ++step) world.step();
+  expectStillFalling(world, ball);
+  EXPECT_EQ(particleVelocity(world, particle), Vec3::Zero());
+}
+
+// This ball left at (4.13, 0, 1.38) m/s: sideways and up.
+TEST(BodyContact, AFastBallFallingPastABoxColliderKeepsItsPath) {
+  World world(config(0.0));
+  BoxCollider cube;
+  cube.half_extents = Vec3::Constant(0.03);
+  ASSERT_TRUE(world.addCollider(cube).isOk());
+  const BodyId id = addBallFallingPastTheOrigin(world);
+  for (int step = 0; step < 3; ++step) world.step();
+  expectStillFalling(world, id);
+}
+
+// Met where the integrator had already moved it for the substep, this particle stopped 16 cm
+// short of the ball at 1 substep, above where it started; at 2 and 4 it was still 2 cm above,
+// coming down at 0.6 m/s, after three steps.
+TEST(BodyContact, AFastParticleLandsOnABallWhereTheyTouch) {
+  for (const int substeps : {1, 2, 4}) {
+    World world = weightlessWorld(substeps);
+    addFixedBall(world);
+    const ParticleId id = *world.addParticle(fastParticle(Vec3(0.0, 0.0, 0.2)));
+    ASSERT_TRUE(world.setParticleMaterial(id, Material{0.0, 0.5}));
+    for (int step = 0; step < 3; ++step) world.step();
+    const Vec3 x = world.particles().positions().col(*world.particles().find(id));
+    EXPECT_NEAR(x.z(), 0.06, 1e-3) << substeps << " substeps";
+    EXPECT_LT(particleVelocity(world, id).norm(), 1e-6) << substeps << " substeps";
+  }
+}
+
+// One that meets the ball on the way lands where they touch: frictionless and e = 0, the part of
+// its velocity along the line of the centres then, (1, 0, 1) / sqrt(2), goes.
+TEST(BodyContact, AFastParticleMeetsABallItFallsOntoAlongTheTouchNormal) {
+  World world(config(0.0));
+  addFixedBall(world, Material{0.0, 0.0});
+  const Real side = 0.06 * std::sqrt(0.5);
+  const ParticleId id = *world.addParticle(fastParticle(Vec3(side, 0.0, side + 0.12)));
+  ASSERT_TRUE(world.setParticleMaterial(id, Material{0.0, 0.0}));
+  world.step();
+  const Vec3 v = particleVelocity(world, id);
+  std::printf("[ swept ] particle v (%.4f %.4f %.4f), expected (5.5 0 -5.5)\n", v.x(), v.y(),
+              v.z());
+  EXPECT_LT((v - Vec3(5.5, 0.0, -5.5)).norm(), 0.1);
 }
 
 TEST(BodyContact, AFastBallStopsAtAThinFixedBody) {

@@ -1,6 +1,7 @@
 #pragma once
 // A speculative contact between two moving shapes, made where they will touch rather than where
-// they start.
+// they start: two bodies' shapes, a body's and a particle's sphere, a body's and a collider (which
+// does not move).
 //
 // Continuous collision grows a pair's margin by how far its bodies travel in the step, so that a
 // fast body meets what it is about to hit. Made at the start, such a contact's normal joins the
@@ -33,12 +34,91 @@
 // solver never pushes on a gap that does not close, whatever its normal, and a resting pile's
 // contacts stay as they were, with no second narrowphase call.
 
+#include <algorithm>
+#include <limits>
+
 #include "engine/collision/narrowphase/manifold.h"
 #include "mass_aggregate_sim/engine/bodies/body_shapes.h"
 #include "mass_aggregate_sim/engine/core/transform.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
+namespace swept {
+
+// Advanced to within this of touching, the contact's normal is the touch's. A ball meeting
+// another obliquely gets there in a few samples, and a pass is bracketed in a few more; a pair
+// still undecided after kMaxSamples gets its contact at the last sample that was closing.
+constexpr Real kTouching = 1e-4;
+constexpr int kMaxSamples = 12;
+
+Real leastSeparation(const Manifold& manifold);
+
+// The contact made at t, taken back to the step's start: each point midway between where the
+// two sides' touching points start, b's -(v_b - v_a) t from a's, its gap as much wider as the
+// motion closes it by t.
+Manifold takenBack(Manifold manifold, Real t, const Vec3& velocity_a, const Vec3& velocity_b);
+
+}  // namespace swept
+
+// The contact of a pair whose sides move at velocity_a and velocity_b over dt: collide_at(t) is
+// their manifold within the pair's margin with each side moved t along its velocity. The one at
+// the start, or one made where the motion makes them touch or on its way past; none when they
+// move apart faster than their gap.
+template <typename CollideAt>
+Manifold sweptContact(const CollideAt& collide_at, const Vec3& velocity_a, const Vec3& velocity_b,
+                      const Real dt) {
+  using swept::kMaxSamples;
+  using swept::kTouching;
+  struct Sample {
+    Real t;
+    Manifold manifold;
+    Real gap;
+  };
+  const Manifold at_start = collide_at(0.0);
+  if (at_start.count == 0) return at_start;
+  const Vec3 relative = velocity_b - velocity_a;
+  Sample now{0.0, at_start, swept::leastSeparation(at_start)};
+  // Touching, or too far apart to touch within the step at these speeds: the contact as it is
+  // (a gap it cannot close is never pushed on, whatever its normal).
+  if (now.gap <= kTouching || dt * relative.norm() <= now.gap) return at_start;
+  // Moving apart from the start, faster than the gap: none.
+  if (!(-relative.dot(at_start.normal) > 0.0)) return Manifold{};
+  // The latest sample still closing, and the earliest known to be past the nearest approach.
+  Sample closing_sample = now;
+  Real opening_at = std::numeric_limits<Real>::infinity();
+  for (int sample = 0; sample < kMaxSamples; ++sample) {
+    // Along the normal the gap is gap - u (t' - t) at t', u = -(v_b - v_a).n. A contact whose
+    // gap stays open over the whole step is not pushed on unless the solver turns the two
+    // towards each other, and then across a plane near the one they pass at.
+    const Real closing = -relative.dot(now.manifold.normal);
+    const bool open_throughout =
+        now.gap + now.t * closing >= 0.0 && now.gap - (dt - now.t) * closing >= 0.0;
+    if (now.gap <= kTouching || open_throughout) {
+      return swept::takenBack(now.manifold, now.t, velocity_a, velocity_b);
+    }
+    Real next;
+    if (closing > 0.0) {
+      // Translating convex shapes are no nearer than that gap until t + gap / u, and the
+      // distance between them is convex in time: advancing never passes a touch.
+      closing_sample = now;
+      next = std::min(now.t + now.gap / closing, 0.5 * (now.t + opening_at));
+    } else {
+      // The last advance went past the nearest approach (its gap, taken back to the start along
+      // this normal, would overlap): halve the bracket.
+      opening_at = now.t;
+      next = 0.5 * (closing_sample.t + now.t);
+    }
+    const Manifold at_next = collide_at(next);
+    if (at_next.count == 0) {
+      // Beyond the margin at next, nearer at the closing sample: the nearest approach is before.
+      opening_at = next;
+      now = closing_sample;
+      continue;
+    }
+    now = Sample{next, at_next, swept::leastSeparation(at_next)};
+  }
+  return swept::takenBack(closing_sample.manifold, closing_sample.t, velocity_a, velocity_b);
+}
 
 struct SweptShape {
   const AnyBodyShape& shape;
@@ -46,8 +126,7 @@ struct SweptShape {
   Vec3 velocity;  // the body's linear velocity
 };
 
-// The contact of a and b within `margin`: collideAny's at the start, or one made where the motion
-// over dt makes them touch or on its way past; none when they move apart faster than their gap.
+// Two bodies' shapes within `margin` (collideAny's manifold).
 Manifold sweptContact(const SweptShape& a, const SweptShape& b, Real margin, Real dt);
 
 }  // namespace engine
