@@ -341,8 +341,7 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
       using Kind = ShapeKind<std::decay_t<decltype(collider)>>;
       const auto collide_at = [&](const Real t) {
         Manifold manifold;
-        Kind::bodyContact(collider, shape.geometry,
-                          Frame(frame.position + t * velocity, frame.rotation), margin, manifold);
+        Kind::bodyContact(collider, shape.geometry, advanced(frame, velocity, t), margin, manifold);
         return manifold;
       };
       keep(ContactKey{ContactOther::kCollider, s, collider.id},
@@ -380,8 +379,10 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
     const auto v = particles.velocities();
     for (std::size_t p = 0; p < particles.size(); ++p) {
       const Vec3 velocity = v.col(p);
-      const Vec3 center = x.col(p) - scene.particle_lead * velocity;
+      const Frame particle_frame(x.col(p) - scene.particle_lead * velocity, Mat3::Identity());
+      const Vec3& center = particle_frame.position;
       const Real r = radius[p];
+      const AnyBodyShape sphere = SphereShape{r};
       const Real margin = speculative + scene.dt * velocity.norm();
       const Aabb box{center - Vec3::Constant(r + margin), center + Vec3::Constant(r + margin)};
       const ParticleId id = particles.idAt(p);
@@ -391,16 +392,11 @@ void findBodyContacts(const BodyCollisionScene& scene, BodyWorkspace& ws) {
         const auto s = static_cast<ShapeIndex>(proxyIndex(data));
         const BodyShape& shape = bodies.shapes()[s];
         if (holds(ws.joined_particles, IdPair{shape.body.packed(), id.packed()})) return true;
-        const Frame& frame = frameOf(s);
         const Vec3& body_velocity = bodies.linearVelocity(bodies.denseIndexUnchecked(shape.body));
-        const Real pair_margin = margin + travelOf(s);
-        const auto collide_at = [&](const Real t) {
-          return collideAnyWith(
-              shape.geometry, Frame(frame.position + t * body_velocity, frame.rotation),
-              SphereShape{r}, Frame(center + t * velocity, Mat3::Identity()), pair_margin);
-        };
         keep(ContactKey{ContactOther::kParticle, s, id.packed()},
-             sweptContact(collide_at, body_velocity, velocity, scene.dt),
+             sweptContact(SweptShape{shape.geometry, frameOf(s), body_velocity},
+                          SweptShape{sphere, particle_frame, velocity}, margin + travelOf(s),
+                          scene.dt),
              combineMaterials(shape.material, scene.materials.of(id.index, particle_default)));
         return true;
       });

@@ -96,14 +96,9 @@ void storeParticles(StepContext& ctx, const bool move) {
     v.col(p) = sb.v;
   }
   if (ws.particle_of_solver.empty()) return;
-  IntegratorState& integration = ctx.integration;
-  integration.acceleration_valid = false;
-  if (ctx.config.integrator == Integrator::kPositionVerlet &&
-      integration.verlet_history_h == ctx.h) {
-    for (const std::uint32_t p : ws.particle_of_solver) {
-      seedVerletHistory(ctx.particles, ctx.caches.damping, p, ctx.h,
-                        integration.acceleration.col(p));
-    }
+  ctx.integration.acceleration_valid = false;
+  if (keepsVerletHistory(ctx)) {
+    for (const std::uint32_t p : ws.particle_of_solver) reseedVerletHistory(ctx, p);
   }
 }
 

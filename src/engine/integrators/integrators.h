@@ -42,6 +42,12 @@ void integrateImplicitEuler(StepContext& ctx);
 // x_prev = x - h v_half (undamped: the Taylor start x_prev = x - v h + a h^2 / 2).
 void seedVerletHistory(ParticleStore& particles, const DampingFactors& damping, std::size_t i,
                        Real h, const Vec3& behind);
+// Whether the particles keep position Verlet histories of this substep, which a velocity a solver
+// changed must reseed (else the next substep moves with the velocity before the change).
+bool keepsVerletHistory(const StepContext& ctx);
+// Particle i's history reseeded from the velocity a solver left, which holds the half kick of the
+// substep's acceleration.
+void reseedVerletHistory(StepContext& ctx, std::size_t i);
 
 // beta of the position update x' = x + v h + beta a h^2 for a constant acceleration a: how much
 // of a substep's velocity change the integrator's positions already followed (1 for semi-implicit

@@ -21,6 +21,16 @@ void seedVerletHistory(ParticleStore& particles, const DampingFactors& damping, 
   previous.col(i) = x.col(i) - h * ((v.col(i) - damping.half_gain[i] * behind) / half_decay);
 }
 
+bool keepsVerletHistory(const StepContext& ctx) {
+  return ctx.config.integrator == Integrator::kPositionVerlet &&
+         ctx.integration.verlet_history_h == ctx.h;
+}
+
+void reseedVerletHistory(StepContext& ctx, const std::size_t i) {
+  seedVerletHistory(ctx.particles, ctx.caches.damping, i, ctx.h,
+                    ctx.integration.acceleration.col(static_cast<Eigen::Index>(i)));
+}
+
 void integratePositionVerlet(StepContext& ctx) {
   ParticleStore& particles = ctx.particles;
   IntegratorState& state = ctx.integration;

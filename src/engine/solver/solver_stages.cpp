@@ -120,15 +120,11 @@ void integratePositions(StepContext& ctx) {
   // The integrators' histories follow what the solver changed.
   IntegratorState& integration = ctx.integration;
   integration.acceleration_valid = false;
-  if (ctx.config.integrator == Integrator::kPositionVerlet && integration.verlet_history_h == h) {
-    // The velocity the solver left holds the half kick of the substep's acceleration.
-    const auto reseed = [&](const std::size_t i) {
-      seedVerletHistory(particles, ctx.caches.damping, i, h, integration.acceleration.col(i));
-    };
-    for (const std::uint32_t i : touched) reseed(i);
+  if (keepsVerletHistory(ctx)) {
+    for (const std::uint32_t i : touched) reseedVerletHistory(ctx, i);
     if (ws.sweptThisSubstep(ctx.collisions.continuous, particles.size())) {
       for (std::size_t i = 0; i < particles.size(); ++i) {
-        if (ws.time_of_impact[i] < 1.0) reseed(i);
+        if (ws.time_of_impact[i] < 1.0) reseedVerletHistory(ctx, i);
       }
     }
   }

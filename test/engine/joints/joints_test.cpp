@@ -27,31 +27,46 @@ BodyId hangRod(World& world, const Real angle, HingeJoint hinge = HingeJoint{}) 
   return rod;
 }
 
+// A swing's period from the steps at which x crosses zero going down, at 60 Hz (the crossing's
+// time by linear interpolation).
+class SwingPeriod {
+ public:
+  explicit SwingPeriod(const Real x) : previous_x_(x) {}
+  void add(const int step, const Real x) {
+    if (previous_x_ > 0.0 && x <= 0.0) {
+      crossings_.push_back((step - 1 + previous_x_ / (previous_x_ - x)) / 60.0);
+    }
+    previous_x_ = x;
+  }
+  std::size_t crossings() const { return crossings_.size(); }
+  Real period() const {
+    return (crossings_.back() - crossings_.front()) / static_cast<Real>(crossings_.size() - 1);
+  }
+
+ private:
+  Real previous_x_;
+  std::vector<Real> crossings_;
+};
+
 TEST(HingeJoint, ARodSwingsWithThePendulumsPeriod) {
   World world(config());
   const Real amplitude = 5.0 * M_PI / 180.0;
   const BodyId rod = hangRod(world, amplitude);
   const std::size_t i = *world.bodies().find(rod);
   // The tip's x crosses zero going the same way once per period.
-  std::vector<Real> crossings;
-  Real previous_x = world.bodies().position(i).x();
+  SwingPeriod swing(world.bodies().position(i).x());
   Real worst_drift = 0.0;
   const Real e0 = world.totalEnergy();
   Real worst_gain = 0.0;
   for (int step = 1; step <= 20 * 60; ++step) {
     world.step();
-    const Real x = world.bodies().position(i).x();
-    if (previous_x > 0.0 && x <= 0.0) {
-      // Linear interpolation of the crossing time.
-      crossings.push_back((step - 1 + previous_x / (previous_x - x)) / 60.0);
-    }
-    previous_x = x;
+    swing.add(step, world.bodies().position(i).x());
     const Vec3 anchor = world.bodies().pose(i).apply(Vec3(0.0, 0.0, 0.5));
     worst_drift = std::max(worst_drift, anchor.norm());
     worst_gain = std::max(worst_gain, world.totalEnergy() - e0);
   }
-  ASSERT_GE(crossings.size(), 3u);
-  const Real period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  ASSERT_GE(swing.crossings(), 3u);
+  const Real period = swing.period();
   // T = 2 pi sqrt(I / (m g d)), I = m (L^2 + w^2) / 3 about the end (w = 1 cm: negligible),
   // d = L / 2, with the amplitude's correction 1 + theta^2 / 16.
   const Real l = 1.0;
@@ -354,16 +369,13 @@ TEST_P(ParticlePendulum, KeepsItsEnergyAndPeriod) {
            kG * world.particles().positions().col(k).z();
   };
   const Real start = energy();
-  Real previous_x = spec.position.x();
-  std::vector<Real> crossings;  // downward through x = 0, interpolated
+  SwingPeriod swing(spec.position.x());
   for (int step = 1; step <= 1200; ++step) {
     world.step();
-    const Real x = world.particles().positions().col(*world.particles().find(bob)).x();
-    if (previous_x > 0.0 && x <= 0.0) crossings.push_back((step - x / (x - previous_x)) / 60.0);
-    previous_x = x;
+    swing.add(step, world.particles().positions().col(*world.particles().find(bob)).x());
   }
-  ASSERT_GE(crossings.size(), 2u);
-  const Real period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  ASSERT_GE(swing.crossings(), 2u);
+  const Real period = swing.period();
   // T = 2 pi sqrt(L / g) (1 + theta^2 / 16 + 11 theta^4 / 3072)
   const Real expected =
       2.0 * M_PI * std::sqrt(1.0 / kG) *

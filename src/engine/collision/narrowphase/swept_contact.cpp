@@ -31,8 +31,8 @@ Manifold takenBack(Manifold manifold, const Real t, const Vec3& velocity_a,
 
 Manifold sweptContact(const SweptShape& a, const SweptShape& b, const Real margin, const Real dt) {
   const auto collide_at = [&](const Real t) {
-    return collideAny(a.shape, Frame(a.frame.position + t * a.velocity, a.frame.rotation), b.shape,
-                      Frame(b.frame.position + t * b.velocity, b.frame.rotation), margin);
+    return collideAny(a.shape, advanced(a.frame, a.velocity, t), b.shape,
+                      advanced(b.frame, b.velocity, t), margin);
   };
   return sweptContact(collide_at, a.velocity, b.velocity, dt);
 }

@@ -60,6 +60,11 @@ Manifold takenBack(Manifold manifold, Real t, const Vec3& velocity_a, const Vec3
 
 }  // namespace swept
 
+// A side's frame moved t along its velocity (rotation is not advanced).
+inline Frame advanced(const Frame& frame, const Vec3& velocity, const Real t) {
+  return Frame(frame.position + t * velocity, frame.rotation);
+}
+
 // The contact of a pair whose sides move at velocity_a and velocity_b over dt: collide_at(t) is
 // their manifold within the pair's margin with each side moved t along its velocity. The one at
 // the start, or one made where the motion makes them touch or on its way past; none when they
@@ -123,10 +128,10 @@ Manifold sweptContact(const CollideAt& collide_at, const Vec3& velocity_a, const
 struct SweptShape {
   const AnyBodyShape& shape;
   const Frame& frame;
-  Vec3 velocity;  // the body's linear velocity
+  Vec3 velocity;  // its body's (or particle's) linear velocity
 };
 
-// Two bodies' shapes within `margin` (collideAny's manifold).
+// Two shapes within `margin` (collideAny's manifold): two bodies', or a body's and a particle's.
 Manifold sweptContact(const SweptShape& a, const SweptShape& b, Real margin, Real dt);
 
 }  // namespace engine
