@@ -13,6 +13,8 @@
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
 //   SEED=3 /tmp/grain_rain_probe 10   # the block's jitter (7, the scene's, by default)
 //   LAID=2 /tmp/grain_rain_probe 10   # instead, LAID layers of 25 grains laid on the top box
+//   SPACE=0.12                        # the laid grains this far apart (0.1 m: they touch)
+//   NOPP=1                            # particle-particle collisions off
 //   INTEG=n                           # the particle integrator (Integrator's order)
 //   PRINTKE=1, WHERE=1, TRACK=grain   # each second's kinetic energy; the grains that moved;
 //                                     # one grain's state and box contacts every 6 steps
@@ -36,7 +38,7 @@ int main(int argc, char** argv) {
   if (getenv("INTEG")) c.integrator = static_cast<Integrator>(atoi(getenv("INTEG")));
   World world(c);
   CollisionSettings cs;
-  cs.particle_collisions = true;
+  cs.particle_collisions = !getenv("NOPP");
   cs.broadphase = Broadphase::kUniformGrid;
   cs.particle_restitution = 0.1;
   cs.particle_friction = 0.3;
@@ -50,8 +52,9 @@ int main(int argc, char** argv) {
       for (int y = 0; y < 5; ++y)
         for (int x = 0; x < 5; ++x) {
           ParticleSpec p;
-          p.position = Vec3(-0.2 + 0.1 * x + 0.05 * (k % 2) + j(rng),
-                            -0.2 + 0.1 * y + 0.05 * (k % 2) + j(rng), 1.551 + 0.0707 * k);
+          const Real space = getenv("SPACE") ? atof(getenv("SPACE")) : 0.1;
+          p.position = Vec3(space * (x - 2) + 0.05 * (k % 2) + j(rng),
+                            space * (y - 2) + 0.05 * (k % 2) + j(rng), 1.551 + 0.0707 * k);
           p.inverse_mass = 20.0;
           p.radius = 0.05;
           world.addParticle(p);

@@ -99,12 +99,12 @@ void ContactResolver::solveVelocities(std::vector<Contact>& contacts,
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
+  followRestingImpulses(x, v, inverse_mass);
 }
 
 void ContactResolver::correctPositions(const std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
                                        const ConstScalarMap& inverse_mass, const Real h,
                                        const CollisionSettings& settings, ContactStats& stats) {
-  followRestingImpulses(x, v, inverse_mass);
   stats.position_iterations = resolvePositions(contacts, x, v, inverse_mass, h, settings, stats);
   // An isolated contact is solved in one velocity pass; a corrected one is measured again, as
   // the passes would in a second pass.
@@ -189,7 +189,8 @@ void ContactResolver::addPart(std::vector<Contact>& part, Vec3Map x, Vec3Map v,
   parts_size_ += part.size();
 }
 
-void ContactResolver::finishPartsVelocities(Vec3Map v, const ConstScalarMap& inverse_mass,
+void ContactResolver::finishPartsVelocities(Vec3Map x, Vec3Map v,
+                                            const ConstScalarMap& inverse_mass,
                                             const Eigen::Ref<const Vec3Array>& acceleration,
                                             const CollisionSettings& settings,
                                             ContactStats& stats) {
@@ -198,6 +199,7 @@ void ContactResolver::finishPartsVelocities(Vec3Map v, const ConstScalarMap& inv
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
+  followRestingImpulses(x, v, inverse_mass);
 }
 
 void ContactResolver::preparePartsOnce(const Vec3Map& v,

@@ -65,7 +65,9 @@ class ContactResolver {
   // links: the geometry of link constraints, by Contact::link.
   // radius: each particle's, for the bound on a pair's position correction (none without it).
   // isolated: which contacts are solved whole in the set-up pass.
-  // The velocity phase: set-up (isolated contacts solved whole), warm starts and the passes.
+  // The velocity phase: set-up (isolated contacts solved whole), warm starts and the passes; then
+  // resting contacts' particles follow their impulses, here, before the body solver changes the
+  // same particles' velocities: it moves them for its own impulses.
   void solveVelocities(std::vector<Contact>& contacts, const std::vector<LinkGeometry>& links,
                        Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                        const Eigen::Ref<const Vec3Array>& acceleration, Real h,
@@ -73,8 +75,8 @@ class ContactResolver {
                        IsolatedContacts isolated = IsolatedContacts::kFind,
                        const Real* radius = nullptr);
   // The position phase after solveVelocities() or finishPartsVelocities() on the same contacts:
-  // resting contacts' particles follow their impulses, then overlaps and link lengths are
-  // corrected; the impulses are kept for the next substep and the stats finished.
+  // overlaps and link lengths are corrected; the impulses are kept for the next substep and the
+  // stats finished.
   void correctPositions(const std::vector<Contact>& contacts, Vec3Map x, Vec3Map v,
                         const ConstScalarMap& inverse_mass, Real h,
                         const CollisionSettings& settings, ContactStats& stats);
@@ -105,8 +107,9 @@ class ContactResolver {
                                 const Eigen::Ref<const Vec3Array>& acceleration);
   // Contacts added since beginParts().
   std::size_t partsContactCount() const { return parts_size_; }
-  // The velocity phase of the parts' rows; correctPositions() with no contacts then finishes.
-  void finishPartsVelocities(Vec3Map v, const ConstScalarMap& inverse_mass,
+  // The velocity phase of the parts' rows, resting contacts' particles followed as in
+  // solveVelocities(); correctPositions() with no contacts then finishes.
+  void finishPartsVelocities(Vec3Map x, Vec3Map v, const ConstScalarMap& inverse_mass,
                              const Eigen::Ref<const Vec3Array>& acceleration,
                              const CollisionSettings& settings, ContactStats& stats);
   const std::vector<Contact>& noContacts() const { return no_contacts_; }

@@ -69,8 +69,9 @@ void solveColliderContactsInParts(StepContext& ctx) {
       i = stop;
     }
   }
-  ws.resolver.finishPartsVelocities(particles.velocities(), particles.inverseMasses(), acceleration,
-                                    settings, ctx.contact_stats);
+  ws.resolver.finishPartsVelocities(particles.positions(), particles.velocities(),
+                                    particles.inverseMasses(), acceleration, settings,
+                                    ctx.contact_stats);
   ws.contacts.clear();
   ws.solved_in_parts = true;
 }

@@ -29,9 +29,9 @@ void World::step() {
     findBodyPairs(ctx);            // first substep: the bodies' tree, candidate pairs
     generateContacts(ctx);         // particles against colliders and each other; links
     generateBodyContacts(ctx);     // first substep: body contacts, the step's body rows
-    solveConstraints(ctx);         // particle rows: warm start, impulses, friction
+    solveConstraints(ctx);         // particle rows: impulses, friction; resting particles follow
     solveBodyConstraints(ctx);     // body rows and joints: warm start, one soft pass
-    integratePositions(ctx);       // particles follow the impulses and are corrected
+    integratePositions(ctx);       // particles: overlaps and link lengths corrected
     integrateBodyPositions(ctx);   // bodies follow their velocities; one pass to relax
   }
   finalise(ctx);  // restitution, bodies written back and put to sleep, time, the guards
