@@ -12,6 +12,7 @@
 #include "engine/core/prefetch.h"
 #include "engine/forces/body_force_stage.h"
 #include "engine/integrators/integrators.h"
+#include "engine/solver/contact_workspace.h"
 #include "engine/world/step_context.h"
 
 namespace mass_aggregate_sim {
@@ -128,20 +129,40 @@ void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3
   center = end.point;
 }
 
-// The links of the particles the body solver moves, closed over links (a rope's every particle
-// joins when one of them touches a body), as distance rows beside the joints.
-void coupleParticleLinks(StepContext& ctx, const Softness& softness) {
+// Whether c is two particles' contact (not a collider's, not a link's).
+bool particlePair(const Contact& c) {
+  return c.kind == ContactKind::kContact && c.b != kNoParticle && !c.position_only;
+}
+
+// The links and contacts of the particles the body solver moves, as distance rows beside the
+// joints: the links as they are, closed over links (a rope's every particle joins when one of
+// them touches a body); the contacts pushing only, closed over the particles resting on joined
+// ones (above them along -gravity: a pile's weight flows down to the body). A particle beside or
+// below rests on something else (the ground); joined, it would bring its own pile, whose supports
+// are the particle solver's, into the body rows at twice the cost (the rain of grains on boxes:
+// 1.5 times the step).
+void coupleParticles(StepContext& ctx, const Softness& link_softness) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.link_joints.clear();
   ws.link_rows.clear();
-  if (ctx.links.empty() || ws.particle_of_solver.empty()) return;
+  ws.pair_joints.clear();
+  ws.pair_rows.clear();
+  ws.pair_keys.clear();
+  if (ws.particle_of_solver.empty()) return;
+  // This substep's particle contacts, when the contact stage made any between particles.
+  const bool pairs =
+      ctx.contacts_active && ctx.collisions.particle_collisions && !ctx.contacts.pairs.empty();
+  if (ctx.links.empty() && !pairs) return;
   const ParticleStore& particles = ctx.particles;
-  const auto joined = [&](const ParticleId id) {
-    if (!id.valid()) return false;
-    const std::size_t p = particles.denseIndexUnchecked(id);
+  const auto joinedAt = [&](const std::size_t p) {
     return p < ws.solver_of_particle.size() && ws.solver_of_particle[p] != kNoBody;
   };
-  // Grow the set of joined particles until no link reaches a new one.
+  const auto joined = [&](const ParticleId id) {
+    return id.valid() && joinedAt(particles.denseIndexUnchecked(id));
+  };
+  const Vec3 up = -ctx.config.gravity;
+  const auto position = particles.positions();
+  // Grow the set of joined particles until no link or contact reaches a new one.
   for (bool grew = true; grew;) {
     grew = false;
     ctx.links.forEach([&](const auto& kind) {
@@ -151,7 +172,26 @@ void coupleParticleLinks(StepContext& ctx, const Softness& softness) {
         if (particleSolverBody(ctx, particles.denseIndexUnchecked(outside)) != kNoBody) grew = true;
       }
     });
+    if (!pairs) continue;
+    for (const Contact& c : ctx.contacts.contacts) {
+      if (!particlePair(c) || joinedAt(c.a) == joinedAt(c.b)) continue;
+      const std::uint32_t outside = joinedAt(c.a) ? c.b : c.a;
+      const std::uint32_t inside = joinedAt(c.a) ? c.a : c.b;
+      if (!(up.dot(Vec3(position.col(outside) - position.col(inside))) > 0.0)) continue;
+      if (particleSolverBody(ctx, outside) != kNoBody) grew = true;
+    }
   }
+  const auto addRow = [&](const DistanceJoint& joint, const Softness& softness,
+                          std::vector<DistanceJoint>& joints, std::vector<JointRow>& rows) {
+    JointRow row;
+    jointSide(ctx, joint.a, row.a, row.r_a, row.center_a, row.q_a);
+    jointSide(ctx, joint.b, row.b, row.r_b, row.center_b, row.q_b);
+    if (row.a == kNoBody && row.b == kNoBody) return;
+    row.softness = softness;
+    row.joint = static_cast<std::uint32_t>(joints.size());
+    joints.push_back(joint);
+    rows.push_back(row);
+  };
   std::vector<BodyWorkspace::LinkImpulse> previous;
   previous.swap(ws.link_impulses);
   ctx.links.forEach([&](const auto& kind) {
@@ -172,16 +212,27 @@ void coupleParticleLinks(StepContext& ctx, const Softness& softness) {
         joint.lower_impulse = it->lower;
         joint.upper_impulse = it->upper;
       }
-      JointRow row;
-      jointSide(ctx, joint.a, row.a, row.r_a, row.center_a, row.q_a);
-      jointSide(ctx, joint.b, row.b, row.r_b, row.center_b, row.q_b);
-      if (row.a == kNoBody && row.b == kNoBody) continue;
-      row.softness = softness;
-      row.joint = static_cast<std::uint32_t>(ws.link_joints.size());
-      ws.link_joints.push_back(joint);
-      ws.link_rows.push_back(row);
+      addRow(joint, link_softness, ws.link_joints, ws.link_rows);
     }
   });
+  if (!pairs) return;
+  const auto radius = particles.radii();
+  for (const Contact& c : ctx.contacts.contacts) {
+    if (!particlePair(c) || !joinedAt(c.a) || !joinedAt(c.b)) continue;
+    DistanceJoint joint = DistanceJoint::pushOnly(JointEnd::atParticle(particles.idAt(c.a)),
+                                                  JointEnd::atParticle(particles.idAt(c.b)),
+                                                  radius[c.a] + radius[c.b]);
+    const auto it = std::lower_bound(
+        ws.pair_impulses.begin(), ws.pair_impulses.end(), c.key,
+        [](const BodyWorkspace::PairImpulse& p, const std::uint64_t key) { return p.key < key; });
+    if (it != ws.pair_impulses.end() && it->key == c.key) joint.lower_impulse = it->impulse;
+    const std::size_t before = ws.pair_rows.size();
+    // Rigid: a pair row only keeps the two from closing; the particle solver's positions stage
+    // takes out their overlap (a soft row's bias would push them apart with real velocity, and
+    // a resting column would bounce).
+    addRow(joint, Softness{}, ws.pair_joints, ws.pair_rows);
+    if (ws.pair_rows.size() != before) ws.pair_keys.push_back(c.key);
+  }
 }
 
 void prepareJoints(StepContext& ctx) {
@@ -207,7 +258,7 @@ void prepareJoints(StepContext& ctx) {
       rows.push_back(row);
     }
   });
-  coupleParticleLinks(ctx, softness);
+  coupleParticles(ctx, softness);
 }
 
 template <typename F>
@@ -222,6 +273,9 @@ void forEachJointRow(StepContext& ctx, F&& f) {
   });
   for (const JointRow& row : ctx.body_ws->link_rows) {
     f(KindTag<DistanceJoint>{}, ctx.body_ws->link_joints[row.joint], row);
+  }
+  for (const JointRow& row : ctx.body_ws->pair_rows) {
+    f(KindTag<DistanceJoint>{}, ctx.body_ws->pair_joints[row.joint], row);
   }
 }
 
@@ -379,6 +433,9 @@ void generateBodyContacts(StepContext& ctx) {
     ws.shock_rows.clear();
     ws.link_joints.clear();
     ws.link_rows.clear();
+    ws.pair_joints.clear();
+    ws.pair_rows.clear();
+    ws.pair_keys.clear();
     for (std::vector<JointRow>& rows : ws.joints.of_kind) rows.clear();
     ws.prepared = false;
     return;
@@ -538,6 +595,14 @@ void finaliseBodies(StepContext& ctx) {
   std::sort(ws.link_impulses.begin(), ws.link_impulses.end(),
             [](const BodyWorkspace::LinkImpulse& x, const BodyWorkspace::LinkImpulse& y) {
               return x.id < y.id;
+            });
+  ws.pair_impulses.clear();
+  for (std::size_t k = 0; k < ws.pair_joints.size(); ++k) {
+    ws.pair_impulses.push_back({ws.pair_keys[k], ws.pair_joints[k].lower_impulse});
+  }
+  std::sort(ws.pair_impulses.begin(), ws.pair_impulses.end(),
+            [](const BodyWorkspace::PairImpulse& x, const BodyWorkspace::PairImpulse& y) {
+              return x.key < y.key;
             });
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies.force(i).setZero();

@@ -87,7 +87,22 @@ struct BodyWorkspace {
     Real upper;
   };
   std::vector<LinkImpulse> link_impulses;
-  std::vector<Real> heights;  // per solver body, along -gravity
+  // The contacts between those particles and the particles resting on them (closed upwards):
+  // push-only distance rows beside the links, started cold each step. The particle solver, which
+  // runs first, sees a particle resting on a body as free: a particle on top and the one under it
+  // fall together there and their row carries nothing, so the upper one's weight reached the body
+  // only through the positions stage, which pushed the lower one into it. The particle solver
+  // solves these contacts too. Each row's impulse, by its contact's key, warm starts the next
+  // step (state, as the links').
+  std::vector<DistanceJoint> pair_joints;
+  std::vector<JointRow> pair_rows;
+  std::vector<std::uint64_t> pair_keys;  // each pair row's particle contact key
+  struct PairImpulse {
+    std::uint64_t key;
+    Real impulse;
+  };
+  std::vector<PairImpulse> pair_impulses;  // by key
+  std::vector<Real> heights;               // per solver body, along -gravity
   RestingLoadBuffers resting_loads;
   // The force generators on bodies, this substep: per moving body (by solver body; empty without
   // generators) their force and torque about the centre of mass; the particles' external forces,

@@ -457,6 +457,10 @@ std::uint64_t World::stateHash() const {
       hasher.add(link.lower);
       hasher.add(link.upper);
     }
+    for (const BodyWorkspace::PairImpulse& pair : body_ws_->pair_impulses) {
+      hasher.add(pair.key);
+      hasher.add(pair.impulse);
+    }
   }
   return hasher.value();
 }
