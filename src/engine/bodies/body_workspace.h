@@ -88,12 +88,12 @@ struct BodyWorkspace {
   };
   std::vector<LinkImpulse> link_impulses;
   // The contacts between those particles and the particles resting on them (closed upwards):
-  // push-only distance rows beside the links, started cold each step. The particle solver, which
-  // runs first, sees a particle resting on a body as free: a particle on top and the one under it
-  // fall together there and their row carries nothing, so the upper one's weight reached the body
-  // only through the positions stage, which pushed the lower one into it. The particle solver
-  // solves these contacts too. Each row's impulse, by its contact's key, warm starts the next
-  // step (state, as the links').
+  // push-only distance rows beside the links. The particle solver, which runs first, sees a
+  // particle resting on a body as free: a particle on top and the one under it fall together
+  // there and their row carries nothing, so without these rows the upper one's weight would reach
+  // the body only through the positions stage, which pushes the lower one into it. The particle
+  // solver solves these contacts too. Each row's impulse, by its contact's key, warm starts the
+  // next step (state, as the links').
   std::vector<DistanceJoint> pair_joints;
   std::vector<JointRow> pair_rows;
   std::vector<std::uint64_t> pair_keys;  // each pair row's particle contact key

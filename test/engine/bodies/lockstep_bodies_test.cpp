@@ -59,7 +59,8 @@ ParticleId addGrain(World& world, const Vec3& position) {
   return *world.addParticle(spec);
 }
 
-// A plane and a box collider; a stack of three cubes on the plane with grains resting on its top;
+// A plane and a box collider; a stack of three cubes on the plane with grains resting on its top
+// (one on two others; particle collisions on);
 // a compound (a box with a sphere and a turned capsule) landing on the box
 // collider; a hinged pendulum with a motor; a ball-jointed pair hanging from the world; two bodies
 // welded by a fixed joint; a box on a cable from a particle held by a rod; a kinematic body
@@ -79,6 +80,12 @@ void build(Lane& run) {
         *w.addBody(body(box(Vec3::Constant(0.25)), 1.0, Vec3(0, 0, 0.25 + 0.5 * k))));
   }
   for (int k = 0; k < 3; ++k) ids.grains.push_back(addGrain(w, Vec3(0.1 * k - 0.1, 0.0, 1.56)));
+  // One more on the two on the left: with particle collisions, the grains' contacts are rows of
+  // the body solver too, warm started across steps.
+  ids.grains.push_back(addGrain(w, Vec3(-0.05, 0.0, 1.56 + 0.087)));
+  CollisionSettings collisions;
+  collisions.particle_collisions = true;
+  ASSERT_TRUE(w.setCollisionSettings(collisions));
 
   BodySpec compound;
   compound.shapes = {box(Vec3(0.3, 0.2, 0.1)), at(sphere(0.15), Vec3(0.3, 0.0, 0.1)),
