@@ -226,12 +226,11 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
         ws.pair_impulses.begin(), ws.pair_impulses.end(), c.key,
         [](const BodyWorkspace::PairImpulse& p, const std::uint64_t key) { return p.key < key; });
     if (it != ws.pair_impulses.end() && it->key == c.key) joint.lower_impulse = it->impulse;
-    const std::size_t before = ws.pair_rows.size();
     // Rigid: a pair row only keeps the two from closing; the particle solver's positions stage
     // takes out their overlap (a soft row's bias would push them apart with real velocity, and
-    // a resting column would bounce).
+    // a resting column would bounce). Both ends are joined, so the row is always made.
     addRow(joint, Softness{}, ws.pair_joints, ws.pair_rows);
-    if (ws.pair_rows.size() != before) ws.pair_keys.push_back(c.key);
+    ws.pair_keys.push_back(c.key);
   }
 }
 

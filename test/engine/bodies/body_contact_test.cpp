@@ -776,8 +776,6 @@ TEST(BodyContact, AFastParticleMeetsABallItFallsOntoAlongTheTouchNormal) {
   EXPECT_LT((v - Vec3(5.5, 0.0, -5.5)).norm(), 0.1);
 }
 
-constexpr Real kGrainRadius = 0.05;
-
 // A 0.5 m box of 20 kg on the ground, particle collisions on, and grains of 50 g at `centres`.
 World grainsOnABox(const std::vector<Vec3>& centres) {
   World world(config());
@@ -787,13 +785,7 @@ World grainsOnABox(const std::vector<Vec3>& centres) {
   collisions.particle_friction = 0.3;
   EXPECT_TRUE(world.setCollisionSettings(collisions).isOk());
   EXPECT_TRUE(world.addBody(body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25))).isOk());
-  for (const Vec3& centre : centres) {
-    ParticleSpec grain;
-    grain.position = centre;
-    grain.inverse_mass = 20.0;
-    grain.radius = kGrainRadius;
-    EXPECT_TRUE(world.addParticle(grain).isOk());
-  }
+  for (const Vec3& centre : centres) addGrain(world, centre);
   return world;
 }
 

@@ -44,6 +44,16 @@ inline BodySpec body(const BodyShapeSpec& shape, const Real mass, const Vec3& po
   return spec;
 }
 
+// A grain: a particle of 5 cm and 50 g at position.
+constexpr Real kGrainRadius = 0.05;
+inline ParticleId addGrain(World& world, const Vec3& position) {
+  ParticleSpec spec;
+  spec.position = position;
+  spec.radius = kGrainRadius;
+  spec.inverse_mass = 20.0;
+  return *world.addParticle(spec);
+}
+
 // The ground: the plane z = 0 with the given material.
 inline void addGround(World& world, const Material& material = {0.0, 0.5},
                       const Vec3& normal = Vec3::UnitZ()) {

@@ -51,14 +51,6 @@ BodyShapeSpec at(BodyShapeSpec shape, const Vec3& position, const Quat& q = Quat
   return shape;
 }
 
-ParticleId addGrain(World& world, const Vec3& position) {
-  ParticleSpec spec;
-  spec.position = position;
-  spec.radius = 0.05;
-  spec.inverse_mass = 20.0;
-  return *world.addParticle(spec);
-}
-
 // A plane and a box collider; a stack of three cubes on the plane with grains resting on its top
 // (one on two others; particle collisions on);
 // a compound (a box with a sphere and a turned capsule) landing on the box
