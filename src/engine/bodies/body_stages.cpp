@@ -72,6 +72,7 @@ void loadParticles(StepContext& ctx, const bool predicted) {
   for (std::size_t k = 0; k < ws.particle_of_solver.size(); ++k) {
     const auto p = static_cast<Eigen::Index>(ws.particle_of_solver[k]);
     SolverBody& sb = ws.solver[ws.first_particle + k];
+    sb.flew = false;
     sb.v = v.col(p);
     sb.dp = x.col(p) - lead * sb.v - ws.particle_start.col(static_cast<Eigen::Index>(k));
     ws.particle_velocity.col(static_cast<Eigen::Index>(k)) = sb.v;
@@ -574,6 +575,7 @@ void integrateBodyPositions(StepContext& ctx) {
     sb.dq_matrix = sb.dq.toRotationMatrix();
     sb.pv.setZero();
     sb.pw.setZero();
+    sb.flew = false;
   }
   if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
   loadParticles(ctx, false);

@@ -54,9 +54,12 @@ struct ContactConstraint {
   // A swept contact (Manifold::slide): its anchors are the touching points themselves, not
   // points midway across the gap.
   bool swept = false;
-  // The contact's impact has been resolved this step (restitution): its normal rows rest until
-  // the next step, which does not warm start them.
+  // The contact's impact has been resolved this step (restitution: once a step), and in this
+  // substep, whose passes its normal rows then sit out. From the next substep they hold from zero
+  // like any contact's: a grain struck at the bottom of a landing pile is pushed back down by the
+  // grains above it.
   bool impact = false;
+  bool impact_now = false;
   int count = 0;
   // The points' normal rows coupled through the bodies, K_ij = J_i M^-1 J_j^T, inverted once: one
   // solve gives every point its share (a face's four points are coupled and K is singular: its

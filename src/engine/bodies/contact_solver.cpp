@@ -290,18 +290,23 @@ void resolveImpact(ContactConstraint& c, Sides& s, const Real h) {
   // The bodies fly on to the touch before turning back. Over the substep, from v0 = v - a h,
   // they move v0 touch + a touch^2 / 2 + (v0 + a touch + dv)(h - touch) + a (h - touch)^2 / 2
   // = h (v + dv) - a h^2 / 2 - touch dv: the positions stage (h (v + dv)) is short by the rest.
+  // The flight's -a h^2 / 2 is the body's once in the substep, however many impacts it takes
+  // (a plate struck by 400 grains at once rose 400 times as much, 2.3 cm).
   const auto move = [&](SolverBody& body, const Vec3& before) {
-    body.dp += -0.5 * h * h * body.acceleration - touch * (body.v - before);
+    const Vec3 flight = body.flew ? Vec3::Zero() : Vec3(-0.5 * h * h * body.acceleration);
+    body.flew = true;
+    body.dp += flight - touch * (body.v - before);
   };
   if (c.a != kNoBody) move(s.a, v_a);
   if (c.b != kNoBody) move(s.b, v_b);
   // An impact acts once: its impulse is no substep's to warm start again, and the contact holds
-  // nothing more this step (nor friction, bounded by a normal impulse of 0).
+  // nothing more this substep (nor friction, bounded by a normal impulse of 0).
   for (int k = 0; k < c.count; ++k) c.points[k].normal_impulse = 0.0;
   c.friction_impulse[0] = 0.0;
   c.friction_impulse[1] = 0.0;
   c.twist_impulse = 0.0;
   c.impact = true;
+  c.impact_now = true;
 }
 
 // The normal rows of c. The velocities are held rigidly: a touching point may not close (the
@@ -559,6 +564,7 @@ namespace {
 
 // Whether the contact's impact was resolved now (which moves its bodies).
 bool warmStart(ContactConstraint& c, Sides& s, const ContactPass& pass) {
+  c.impact_now = false;
   // Impacts first, at the velocities the bodies arrive with (a warm start would change them).
   if (!c.impact && c.restitution > 0.0) {
     for (int k = 0; k < c.count; ++k) {
@@ -570,7 +576,6 @@ bool warmStart(ContactConstraint& c, Sides& s, const ContactPass& pass) {
       }
     }
   }
-  if (c.impact) return false;
   // The points' normal impulses P_k, the friction F at the centre and the twist tau together:
   // -(sum P + F) on a's momentum, -(sum r_a x P + c_a x F + tau n) on its angular momentum, +
   // on b.
@@ -762,7 +767,7 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
   for (std::size_t i = 0; i < n; ++i) {
     ContactConstraint& c = constraints[pass.top_down ? n - 1 - i : i];
     Sides s(c, bodies);
-    if (!c.impact) solveNormals(c, s, pass, inverse_h);
+    if (!c.impact_now) solveNormals(c, s, pass, inverse_h);
     if (c.friction > 0.0) solveFriction(c, s);
   }
 }
@@ -772,7 +777,7 @@ namespace {
 // The shock row's contact, with its lower side in s.
 void solveShock(ContactConstraint& upper, Sides& s, const ContactPass& pass, const Real inverse_h) {
   takeSeparations(upper, s);
-  if (!upper.impact) solveNormals(upper, s, pass, inverse_h);
+  if (!upper.impact_now) solveNormals(upper, s, pass, inverse_h);
   if (upper.friction > 0.0) solveFriction(upper, s);
 }
 
@@ -784,7 +789,7 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
   for (ShockRow& row : rows) {
     const ContactConstraint& c = constraints[row.constraint];
     ContactConstraint& upper = row.upper_alone;
-    upper.impact = c.impact;
+    upper.impact_now = c.impact_now;
     for (int k = 0; k < c.count; ++k) upper.points[k].normal_impulse = c.points[k].normal_impulse;
     upper.friction_impulse[0] = c.friction_impulse[0];
     upper.friction_impulse[1] = c.friction_impulse[1];

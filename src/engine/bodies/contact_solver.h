@@ -6,9 +6,10 @@
 // Restitution is an impact: the first substep in which a contact's points would close within it
 // faster than the threshold (judged before the warm start, at the speeds the bodies arrive with),
 // the contact's points are solved together (a block solve of their normal rows) so that each
-// separates at e times the speed it closed at, and its normal rows then rest for the step. Resolved
-// as they come, impacts pass along a row of touching-close bodies one by one (Newton's cradle), and
-// a face that lands flat bounces without turning.
+// separates at e times the speed it closed at, and its normal rows then rest for the substep
+// (holding from zero in the next ones, as any contact's). Resolved as they come, impacts pass along
+// a row of touching-close bodies one by one (Newton's cradle), and a face that lands flat bounces
+// without turning.
 
 #include <cstdint>
 #include <vector>

@@ -28,6 +28,8 @@ struct SolverBody {
   // parabola), a held one moves with the velocity the solver leaves (semi-implicit Euler).
   Vec3 acceleration = Vec3::Zero();
   bool held = false;
+  // An impact of this substep has moved the body as a free body would have flown (-a h^2 / 2).
+  bool flew = false;
 
   Vec3 velocityAt(const Vec3& r) const { return v + w.cross(r); }
   // An impulse p at r from the centre of mass: v += p / m, w += I^-1 (r x p).
