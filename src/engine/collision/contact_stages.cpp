@@ -380,6 +380,27 @@ bool generateColliderContacts(StepContext& ctx, const std::size_t begin, const s
   return in_two;
 }
 
+void addStillSurfaceContacts(StepContext& ctx) {
+  ContactWorkspace& ws = ctx.contacts;
+  const auto x = ctx.particles.positions();
+  const auto radius = ctx.particles.radii();
+  const Real margin = contactMargin(ctx.collisions.penetration_slop);
+  ContactSink sink(ws.contacts, ctx.collisions.max_contacts, ctx.dropped,
+                   ws.position_only_contacts);
+  for (const ContactWorkspace::StillSurface& surface : ws.still_surfaces) {
+    const Real penetration = surface.offset - surface.normal.dot(x.col(surface.particle));
+    if (!(penetration > -positionOnlyReach(radius[surface.particle]))) continue;
+    Contact* c = penetration > -margin ? sink.add() : sink.addPositionOnly();
+    if (c == nullptr) continue;
+    c->a = surface.particle;
+    c->key = stillSurfaceContactKey(ws.slots[surface.particle], surface.shape);
+    c->normal = surface.normal;
+    c->penetration = penetration;
+    c->restitution = surface.restitution;
+    c->friction = surface.friction;
+  }
+}
+
 int otherColliderContacts(const void* const context, const std::size_t i, GroupContact& contact) {
   const StepContext& ctx = *static_cast<const StepContext*>(context);
   const ContactWorkspace& ws = ctx.contacts;

@@ -47,7 +47,8 @@ struct LinkGeometry {
   Real length = 0.0;           // the rod length or the cable's maximum
 };
 
-// Keys: particle pairs by their two slots, particle-collider by slot and collider id, links by id.
+// Keys: particle pairs by their two slots, particle-collider by slot and collider id, links by id,
+// particle-body surface (ContactWorkspace::StillSurface) by slot and body shape.
 inline std::uint64_t pairContactKey(std::uint32_t slot_a, std::uint32_t slot_b) {
   if (slot_a > slot_b) std::swap(slot_a, slot_b);
   return (std::uint64_t{slot_a} << 31) ^ slot_b;
@@ -57,6 +58,9 @@ inline std::uint64_t colliderContactKey(const std::uint32_t slot, const std::uin
 }
 inline std::uint64_t linkContactKey(const std::uint32_t link) {
   return (std::uint64_t{2} << 62) | link;
+}
+inline std::uint64_t stillSurfaceContactKey(const std::uint32_t slot, const std::uint32_t shape) {
+  return (std::uint64_t{3} << 62) | ((std::uint64_t{slot} << 31) ^ shape);
 }
 
 }  // namespace engine

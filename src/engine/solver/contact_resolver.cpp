@@ -63,6 +63,16 @@ Real ContactResolver::lastImpulse(const std::uint64_t key) const {
   return it != warm_by_key_.end() && it->first == key ? warm_normal_[it->second] : 0.0;
 }
 
+bool ContactResolver::lastImpulses(const std::uint64_t key, Real& normal, Vec3& friction) const {
+  indexWarmByKey();
+  const auto it = std::lower_bound(warm_by_key_.begin(), warm_by_key_.end(),
+                                   std::pair<std::uint64_t, std::uint32_t>{key, 0});
+  if (it == warm_by_key_.end() || it->first != key) return false;
+  normal = warm_normal_[it->second];
+  friction = warm_friction_.empty() ? Vec3::Zero() : warm_friction_[it->second];
+  return true;
+}
+
 std::ptrdiff_t ContactResolver::findWarm(const std::uint64_t key, std::size_t& cursor) {
   // A settled scene lists its contacts in the same order every substep: the entry is at the
   // cursor. Else a binary search by key, after which the cursor follows from there.

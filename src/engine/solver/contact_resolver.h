@@ -127,6 +127,9 @@ class ContactResolver {
   // The total normal impulse the contact named `key` ended the last substep with (the impulse
   // kept for warm starting; 0 when it did not act), and that substep's length (0 before any).
   Real lastImpulse(std::uint64_t key) const;
+  // The normal impulse and the friction impulse on particle a the contact named `key` ended the
+  // last substep with; false when it was not among that substep's contacts.
+  bool lastImpulses(std::uint64_t key, Real& normal, Vec3& friction) const;
   Real lastSubstep() const { return last_substep_; }
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {

@@ -24,8 +24,22 @@ struct ContactWorkspace {
   std::vector<BatchPlane> batch_planes;  // the planes, tested in the collider groups' lanes
   // This substep's generation gave some particle contacts with two or more colliders.
   bool particle_in_two_collider_contacts = false;
-  std::vector<LinkGeometry> links;   // of the link contacts, by Contact::link
-  std::vector<std::uint32_t> slots;  // per particle: its id's slot, for the contact keys
+  std::vector<LinkGeometry> links;  // of the link contacts, by Contact::link
+  // A particle's contact with the surface of a body that does not move this step (fixed or
+  // asleep), as the body contact stage found it in the first substep: the particle solver takes it
+  // as a collider's, the plane n.x = offset + r (r the particle's radius, in offset), each substep
+  // at the particle's position then. So a pile resting in a still bin is the particles' own pile,
+  // solved as on colliders, and no body row joins it.
+  struct StillSurface {
+    std::uint32_t particle = 0;
+    std::uint32_t shape = 0;
+    Vec3 normal = Vec3::UnitZ();
+    Real offset = 0.0;  // separation = n.x - offset
+    Real restitution = 0.0;
+    Real friction = 0.0;
+  };
+  std::vector<StillSurface> still_surfaces;  // this step's (made when the world has bodies)
+  std::vector<std::uint32_t> slots;          // per particle: its id's slot, for the contact keys
   std::uint64_t slots_layout = ~std::uint64_t{0};  // ParticleStore::layoutVersion() of slots
   std::vector<Contact> sorted_contacts;
   // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.

@@ -85,17 +85,26 @@ void solveConstraints(StepContext& ctx) {
   ParticleStore& particles = ctx.particles;
   ws.solved_in_parts = false;
   const bool only_colliders = onlyColliderContacts(ctx);
+  const bool surfaces = ctx.bodies && !ws.still_surfaces.empty();
   if (only_colliders && settings.max_contacts == 0) {
-    solveColliderContactsInParts(ctx);
-    return;
+    if (!surfaces) {
+      solveColliderContactsInParts(ctx);
+      return;
+    }
+    // The contact stage left the collider contacts to the parts; with still bodies' surfaces
+    // they are made here, all at once, beside those.
+    ws.collider_position_only = false;
+    ws.particle_in_two_collider_contacts =
+        !ctx.colliders.empty() && generateColliderContacts(ctx, 0, particles.size());
   }
+  if (surfaces) addStillSurfaceContacts(ctx);
   // Isolated contacts are looked for when all contacts are with colliders (most are then
   // isolated: a particle meets two colliders only in a corner); with particle pairs or links
   // few are, and the count would cost more than it saves.
   IsolatedContacts isolated = IsolatedContacts::kNone;
   if (only_colliders) {
-    isolated =
-        ws.particle_in_two_collider_contacts ? IsolatedContacts::kFind : IsolatedContacts::kAll;
+    isolated = ws.particle_in_two_collider_contacts || surfaces ? IsolatedContacts::kFind
+                                                                : IsolatedContacts::kAll;
   }
   ws.resolver.solveVelocities(ws.contacts, ws.links, particles.positions(), particles.velocities(),
                               particles.inverseMasses(), ctx.integration.acceleration, ctx.h,

@@ -12,6 +12,7 @@
 #include "engine/bodies/islands.h"
 #include "engine/collision/narrowphase/any_shape.h"
 #include "engine/joints/joint_ends.h"
+#include "engine/solver/contact_workspace.h"
 #include "mass_aggregate_sim/engine/bodies/mass_properties.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 
@@ -235,6 +236,22 @@ std::vector<BodyContactReport> World::bodyContacts() const {
         r.other = BodyContactReport::Other::kParticle;
         r.particle = ParticleId::fromPacked(c.key.b);
         break;
+    }
+    // A particle on a still body was the particle solver's this step (StillSurface): its
+    // impulses are there.
+    Real normal = 0.0;
+    Vec3 friction = Vec3::Zero();
+    if (c.key.other == ContactOther::kParticle &&
+        contacts_->resolver.lastImpulses(stillSurfaceContactKey(r.particle.index, c.key.shape),
+                                         normal, friction)) {
+      BodyContactReport::Point p;
+      p.position = c.manifold.points[0].point;
+      p.separation = c.manifold.points[0].separation;
+      p.normal_impulse = normal;
+      p.friction_impulse = friction;
+      r.points.push_back(p);
+      out.push_back(std::move(r));
+      continue;
     }
     // The manifold's friction and twist as point impulses, the least-norm split with the same
     // sum and the same torque about the centre: f_k = F / n + tau (n x d_k) / sum |d_i|^2.

@@ -902,6 +902,38 @@ TEST(BodyContact, AColumnOfGrainsLandingOnABoxStaysOnTop) {
   EXPECT_GT(lowest, 0.5);
 }
 
+// A grain on a body that does not move is the particle solver's (as on a collider): the report
+// still gives the impulse that holds it, its weight over a substep.
+TEST(BodyContact, AGrainOnAFixedBoxReportsItsWeight) {
+  World world(config());
+  addGround(world);
+  BodySpec table = body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
+  table.type = BodyType::kFixed;
+  ASSERT_TRUE(world.addBody(table).isOk());
+  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  for (int step = 0; step < 60; ++step) world.step();
+  const std::vector<BodyContactReport> reports = world.bodyContacts();
+  ASSERT_EQ(reports.size(), 1u);
+  ASSERT_EQ(reports[0].points.size(), 1u);
+  const Real h = world.config().dt / world.bodySettings().substeps;
+  EXPECT_NEAR(reports[0].points[0].normal_impulse, 0.05 * kG * h, 1e-9);
+  EXPECT_NEAR(world.particles().positions()(2, 0), 0.5 + kGrainRadius, 1e-3);
+}
+
+// The last body gone, the surface it lent the particle solver goes with it.
+TEST(BodyContact, AGrainFallsWhenTheFixedBoxUnderItIsRemoved) {
+  World world(config());
+  addGround(world);
+  BodySpec table = body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
+  table.type = BodyType::kFixed;
+  const BodyId id = *world.addBody(table);
+  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  for (int step = 0; step < 30; ++step) world.step();
+  ASSERT_TRUE(world.removeBody(id).isOk());
+  for (int step = 0; step < 60; ++step) world.step();
+  EXPECT_NEAR(world.particles().positions()(2, 0), kGrainRadius, 1e-3);
+}
+
 TEST(BodyContact, AFastBallStopsAtAThinFixedBody) {
   World world(config(0.0));
   BodySpec wall = body(box(Vec3(0.01, 1.0, 1.0), Material{0.0, 0.0}), 1.0, Vec3(2.0, 0.0, 0.0));
