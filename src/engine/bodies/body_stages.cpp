@@ -134,8 +134,8 @@ void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3
 // solver's, as a collider's (ContactWorkspace::StillSurface): the plane through the body's
 // surface where the particle met it, n.x = n.x_0 - s_0 at the particle's start x_0, separation
 // s_0. Joined to the body solver instead, a pile resting in a sleeping bin was all in it (the
-// closure upwards), and the particle solver, which cannot see the bin, ran every pass every
-// substep: 25 to 36 times the cost of the same pile in a bin of colliders.
+// closure upwards), its contacts body rows in every substep: 1,000 grains cost 4.65 ms a step,
+// 0.86 now (BM_GrainBin).
 void addStillSurface(StepContext& ctx, const BodyContact& contact, const std::size_t p) {
   const Manifold& m = contact.manifold;
   const auto i = static_cast<Eigen::Index>(p);

@@ -27,14 +27,14 @@ struct ContactWorkspace {
   std::vector<LinkGeometry> links;  // of the link contacts, by Contact::link
   // A particle's contact with the surface of a body that does not move this step (fixed or
   // asleep), as the body contact stage found it in the first substep: the particle solver takes it
-  // as a collider's, the plane n.x = offset + r (r the particle's radius, in offset), each substep
-  // at the particle's position then. So a pile resting in a still bin is the particles' own pile,
-  // solved as on colliders, and no body row joins it.
+  // as a collider's, the surface as a plane along the contact's normal, each substep at the
+  // particle's position then. So a pile resting in a still bin is the particles' own pile, solved
+  // as on colliders, and no body row joins it.
   struct StillSurface {
     std::uint32_t particle = 0;
     std::uint32_t shape = 0;
     Vec3 normal = Vec3::UnitZ();
-    Real offset = 0.0;  // separation = n.x - offset
+    Real offset = 0.0;  // separation = n.x - offset (the radii in it)
     Real restitution = 0.0;
     Real friction = 0.0;
   };
