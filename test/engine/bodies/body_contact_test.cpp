@@ -902,15 +902,22 @@ TEST(BodyContact, AColumnOfGrainsLandingOnABoxStaysOnTop) {
   EXPECT_GT(lowest, 0.5);
 }
 
+// A grain resting on a fixed half-metre box on the ground; the box's id in `table`.
+World grainOnAFixedBox(BodyId& table) {
+  World world(config());
+  addGround(world);
+  BodySpec spec = body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
+  spec.type = BodyType::kFixed;
+  table = *world.addBody(spec);
+  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  return world;
+}
+
 // A grain on a body that does not move is the particle solver's (as on a collider): the report
 // still gives the impulse that holds it, its weight over a substep.
 TEST(BodyContact, AGrainOnAFixedBoxReportsItsWeight) {
-  World world(config());
-  addGround(world);
-  BodySpec table = body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
-  table.type = BodyType::kFixed;
-  ASSERT_TRUE(world.addBody(table).isOk());
-  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  BodyId table;
+  World world = grainOnAFixedBox(table);
   for (int step = 0; step < 60; ++step) world.step();
   const std::vector<BodyContactReport> reports = world.bodyContacts();
   ASSERT_EQ(reports.size(), 1u);
@@ -922,14 +929,10 @@ TEST(BodyContact, AGrainOnAFixedBoxReportsItsWeight) {
 
 // The last body gone, the surface it lent the particle solver goes with it.
 TEST(BodyContact, AGrainFallsWhenTheFixedBoxUnderItIsRemoved) {
-  World world(config());
-  addGround(world);
-  BodySpec table = body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
-  table.type = BodyType::kFixed;
-  const BodyId id = *world.addBody(table);
-  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  BodyId table;
+  World world = grainOnAFixedBox(table);
   for (int step = 0; step < 30; ++step) world.step();
-  ASSERT_TRUE(world.removeBody(id).isOk());
+  ASSERT_TRUE(world.removeBody(table).isOk());
   for (int step = 0; step < 60; ++step) world.step();
   EXPECT_NEAR(world.particles().positions()(2, 0), kGrainRadius, 1e-3);
 }
