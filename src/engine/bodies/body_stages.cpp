@@ -147,8 +147,7 @@ void addStillSurface(StepContext& ctx, const BodyContact& contact, const std::si
   surface.shape = contact.key.shape;
   surface.normal = m.normal;
   surface.offset = m.normal.dot(start) - m.points[0].separation;
-  surface.restitution = contact.restitution;
-  surface.friction = contact.friction;
+  surface.material = Material{contact.restitution, contact.friction};
   ctx.contacts.still_surfaces.push_back(surface);
 }
 

@@ -51,12 +51,12 @@ class ContactSink {
   std::size_t& position_only_;
 };
 
-void colliderContact(Contact* c, const std::uint32_t i, const std::uint32_t slot,
-                     const ColliderId collider, const ShapeContact& shape,
-                     const Material& material) {
+// Particle i against a surface that does not move in the solver: a collider's, or a still body's.
+void surfaceContact(Contact* c, const std::uint32_t i, const std::uint64_t key,
+                    const ShapeContact& shape, const Material& material) {
   if (c == nullptr) return;
   c->a = i;
-  c->key = colliderContactKey(slot, collider);
+  c->key = key;
   c->normal = shape.normal;
   c->penetration = shape.penetration;
   c->restitution = material.restitution;
@@ -360,18 +360,18 @@ bool generateColliderContacts(StepContext& ctx, const std::size_t begin, const s
       using Shape = typename std::decay_t<decltype(shapes)>::value_type;
       for (const Shape& shape : shapes) {
         const std::optional<ShapeContact> contact = ShapeKind<Shape>::contact(shape, xi, r, reach);
+        const std::uint64_t key = colliderContactKey(ws.slots[i], shape.id);
         if (hit && hit->collider == shape.id) {
           // Stopped at its time of impact: touching, whatever rounding says.
           const ShapeContact touching{contact ? contact->normal : hit->normal,
                                       contact ? std::max(contact->penetration, Real{0.0}) : 0.0};
-          colliderContact(sink.add(), index, ws.slots[i], shape.id, touching, shape.material);
+          surfaceContact(sink.add(), index, key, touching, shape.material);
           ++made;
         } else if (contact && contact->penetration > -margin) {
-          colliderContact(sink.add(), index, ws.slots[i], shape.id, *contact, shape.material);
+          surfaceContact(sink.add(), index, key, *contact, shape.material);
           ++made;
         } else if (contact) {
-          colliderContact(sink.addPositionOnly(), index, ws.slots[i], shape.id, *contact,
-                          shape.material);
+          surfaceContact(sink.addPositionOnly(), index, key, *contact, shape.material);
         }
       }
     });
@@ -390,14 +390,9 @@ void addStillSurfaceContacts(StepContext& ctx) {
   for (const ContactWorkspace::StillSurface& surface : ws.still_surfaces) {
     const Real penetration = surface.offset - surface.normal.dot(x.col(surface.particle));
     if (!(penetration > -positionOnlyReach(radius[surface.particle]))) continue;
-    Contact* c = penetration > -margin ? sink.add() : sink.addPositionOnly();
-    if (c == nullptr) continue;
-    c->a = surface.particle;
-    c->key = stillSurfaceContactKey(ws.slots[surface.particle], surface.shape);
-    c->normal = surface.normal;
-    c->penetration = penetration;
-    c->restitution = surface.restitution;
-    c->friction = surface.friction;
+    surfaceContact(penetration > -margin ? sink.add() : sink.addPositionOnly(), surface.particle,
+                   stillSurfaceContactKey(ws.slots[surface.particle], surface.shape),
+                   ShapeContact{surface.normal, penetration}, surface.material);
   }
 }
 

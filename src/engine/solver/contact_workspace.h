@@ -35,8 +35,7 @@ struct ContactWorkspace {
     std::uint32_t shape = 0;
     Vec3 normal = Vec3::UnitZ();
     Real offset = 0.0;  // separation = n.x - offset (the radii in it)
-    Real restitution = 0.0;
-    Real friction = 0.0;
+    Material material;  // combined as the body contact's
   };
   std::vector<StillSurface> still_surfaces;  // this step's (made when the world has bodies)
   std::vector<std::uint32_t> slots;          // per particle: its id's slot, for the contact keys
