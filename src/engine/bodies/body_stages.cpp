@@ -435,34 +435,26 @@ void integrateBodyVelocities(StepContext& ctx) {
   }
 }
 
-void findBodyPairs(StepContext& ctx) {
-  if (!ctx.bodies || ctx.substep != 0) return;
-  updateBodyProxies(collisionScene(ctx), *ctx.bodies, *ctx.body_ws);
+// Nothing moves and no particle can wake anything: the contacts stay as they are, no row is made
+// (a sleeping pile costs next to nothing).
+bool nothingToFind(const StepContext& ctx) {
+  return ctx.body_ws->solver.empty() && ctx.particles.empty();
 }
 
-void generateBodyContacts(StepContext& ctx) {
+// Whether the body of the contact's first shape does not move this step (fixed or asleep).
+bool onStillBody(const StepContext& ctx, const BodyContact& contact) {
+  const BodyStore& bodies = *ctx.bodies;
+  const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[contact.key.shape].body);
+  return ctx.body_ws->solver_of_body[i] == kNoBody;
+}
+
+void findBodyPairs(StepContext& ctx) {
   if (!ctx.bodies || ctx.substep != 0) return;
   BodyStore& bodies = *ctx.bodies;
   BodyWorkspace& ws = *ctx.body_ws;
-  const BodySettings& settings = *ctx.body_settings;
-  std::vector<ContactWorkspace::StillSurface>& still_surfaces = ctx.contacts.still_surfaces;
-  still_surfaces.clear();
-  // Nothing moves and no particle can wake anything: the contacts stay as they are, no row is
-  // made (a sleeping pile costs next to nothing).
-  if (ws.solver.empty() && ctx.particles.empty()) {
-    ws.awake_contacts.clear();
-    ws.constraints.clear();
-    ws.constraint_sides.clear();
-    ws.shock_rows.clear();
-    ws.link_joints.clear();
-    ws.link_rows.clear();
-    ws.pair_joints.clear();
-    ws.pair_rows.clear();
-    ws.pair_keys.clear();
-    for (std::vector<JointRow>& rows : ws.joints.of_kind) rows.clear();
-    ws.prepared = false;
-    return;
-  }
+  updateBodyProxies(collisionScene(ctx), bodies, ws);
+  ctx.contacts.still_surfaces.clear();
+  if (nothingToFind(ctx)) return;
   findBodyContacts(collisionScene(ctx), ws);
   // A sleeping island touched by an awake body wakes now: its kept contacts get rows this step
   // (listed again here) and are found again from the next.
@@ -480,14 +472,8 @@ void generateBodyContacts(StepContext& ctx) {
     }
     ws.first_particle = ws.solver.size();
   }
-  const auto side = [&](const ShapeIndex s, Vec3& center, Real& rounding) {
-    const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[s].body);
-    center = bodies.position(i);
-    rounding = shapeRounding(bodies.shapes()[s].geometry);
-    return ws.solver_of_body[i];
-  };
-  // The rows bottom up along gravity (by each contact's first point; ties in key order), of the
-  // contacts with an awake side: the others of a pile that mostly sleeps are passed over.
+  // The contacts with an awake side bottom up along gravity (by each contact's first point; ties
+  // in key order): the others of a pile that mostly sleeps are passed over.
   std::vector<std::pair<Real, std::uint32_t>>& order = ws.contact_order;
   order.clear();
   const Vec3 up = -ctx.config.gravity;
@@ -496,6 +482,43 @@ void generateBodyContacts(StepContext& ctx) {
     order.emplace_back(m.count > 0 ? up.dot(m.points[0].point) : 0.0, c);
   }
   std::sort(order.begin(), order.end());
+  // The particles' contacts with still bodies are made here, before the particles' own, so the
+  // particle solver can take them first with the colliders' (a pile is held up from below).
+  if (!ctx.contacts_active) return;
+  for (const auto& entry : order) {
+    const BodyContact& contact = ws.contacts[entry.second];
+    if (contact.key.other != ContactOther::kParticle || !onStillBody(ctx, contact)) continue;
+    addStillSurface(ctx, contact, *ctx.particles.find(ParticleId::fromPacked(contact.key.b)));
+  }
+}
+
+void generateBodyContacts(StepContext& ctx) {
+  if (!ctx.bodies || ctx.substep != 0) return;
+  BodyStore& bodies = *ctx.bodies;
+  BodyWorkspace& ws = *ctx.body_ws;
+  const BodySettings& settings = *ctx.body_settings;
+  if (nothingToFind(ctx)) {
+    ws.awake_contacts.clear();
+    ws.constraints.clear();
+    ws.constraint_sides.clear();
+    ws.shock_rows.clear();
+    ws.link_joints.clear();
+    ws.link_rows.clear();
+    ws.pair_joints.clear();
+    ws.pair_rows.clear();
+    ws.pair_keys.clear();
+    for (std::vector<JointRow>& rows : ws.joints.of_kind) rows.clear();
+    ws.prepared = false;
+    return;
+  }
+  const auto side = [&](const ShapeIndex s, Vec3& center, Real& rounding) {
+    const std::size_t i = bodies.denseIndexUnchecked(bodies.shapes()[s].body);
+    center = bodies.position(i);
+    rounding = shapeRounding(bodies.shapes()[s].geometry);
+    return ws.solver_of_body[i];
+  };
+  // The rows in the order findBodyPairs gave the contacts (bottom up).
+  const std::vector<std::pair<Real, std::uint32_t>>& order = ws.contact_order;
   ws.constraints.clear();
   ws.constraint_sides.clear();
   // Each contact reads its kept masses, 512 bytes in a pool apart from it; in a pile a few
@@ -522,11 +545,9 @@ void generateBodyContacts(StepContext& ctx) {
         sides.b = kNoBody;
         break;
       case ContactOther::kParticle: {
+        // On a still body: the particle solver's (findBodyPairs made it a StillSurface).
+        if (sides.a == kNoBody && ctx.contacts_active) continue;
         const std::size_t p = *ctx.particles.find(ParticleId::fromPacked(contact.key.b));
-        if (sides.a == kNoBody && ctx.contacts_active) {
-          addStillSurface(ctx, contact, p);
-          continue;
-        }
         sides.b = particleSolverBody(ctx, p);
         sides.center_b = ctx.particles.positions().col(static_cast<Eigen::Index>(p));
         break;

@@ -15,9 +15,12 @@ class StepContext;
 void beginBodyStep(StepContext& ctx);
 // v += h (g + F / m), w by the torque and the gyroscopic term (implicit), damping.
 void integrateBodyVelocities(StepContext& ctx);
-// First substep: the tree follows the awake bodies; candidate pairs.
+// First substep: the tree follows the awake bodies; the narrowphase; islands an awake body
+// touches wake; the contacts ordered bottom up; a particle's contact with a still body (fixed or
+// asleep) handed to the particle solver (ContactWorkspace::StillSurface).
 void findBodyPairs(StepContext& ctx);
-// First substep: the narrowphase, the particles that touch bodies, the rows of the step.
+// First substep: the particles that touch moving bodies join the body solver; the rows of the
+// step.
 void generateBodyContacts(StepContext& ctx);
 // Warm start, then one pass over the joints and contacts with their bias.
 void solveBodyConstraints(StepContext& ctx);

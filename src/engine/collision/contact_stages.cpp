@@ -446,6 +446,7 @@ void generateContacts(StepContext& ctx) {
       !ctx.links.empty() || (settings.particle_collisions && !ws.pairs.empty());
   ws.particle_in_two_collider_contacts =
       !ctx.colliders.empty() && generateColliderContacts(ctx, 0, n);
+  if (ctx.bodies) addStillSurfaceContacts(ctx);
 
   if (settings.particle_collisions) {
     const bool filter = !settings.collide_linked && !ws.linked_pairs.empty();

@@ -231,6 +231,13 @@ void ContactResolver::beginSubstep(const Eigen::Index n, const Real h, const Rea
   }
   touched_.clear();
   flagged_count_ = 0;
+  // A resting contact's impulse is its load times h: a substep of another length (the bodies fell
+  // asleep or woke, auto_substep) starts from the kept impulses scaled to it.
+  if (last_substep_ > 0.0 && h != last_substep_) {
+    const Real scale = h / last_substep_;
+    for (Real& normal : warm_normal_) normal *= scale;
+    for (Vec3& friction : warm_friction_) friction *= scale;
+  }
   last_substep_ = h;
   links_ = &links;
   radius_ = nullptr;

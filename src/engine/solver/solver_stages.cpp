@@ -96,8 +96,8 @@ void solveConstraints(StepContext& ctx) {
     ws.collider_position_only = false;
     ws.particle_in_two_collider_contacts =
         !ctx.colliders.empty() && generateColliderContacts(ctx, 0, particles.size());
+    addStillSurfaceContacts(ctx);
   }
-  if (surfaces) addStillSurfaceContacts(ctx);
   // Isolated contacts are looked for when all contacts are with colliders (most are then
   // isolated: a particle meets two colliders only in a corner); with particle pairs or links
   // few are, and the count would cost more than it saves.

@@ -26,9 +26,9 @@ void World::step() {
     integrateVelocities(ctx);      // particles: the integrator (velocities, positions predicted)
     integrateBodyVelocities(ctx);  // bodies: forces and torques, the gyroscopic term implicit
     findPairs(ctx);                // candidate particle pairs; swept tests
-    findBodyPairs(ctx);            // first substep: the bodies' tree, candidate pairs
-    generateContacts(ctx);         // particles against colliders and each other; links
-    generateBodyContacts(ctx);     // first substep: body contacts, the step's body rows
+    findBodyPairs(ctx);            // first substep: body contacts; particles' on still bodies
+    generateContacts(ctx);         // particles against colliders, still bodies, each other; links
+    generateBodyContacts(ctx);     // first substep: the step's body rows
     solveConstraints(ctx);         // particle rows: impulses, friction; resting particles follow
     solveBodyConstraints(ctx);     // body rows and joints: warm start, one soft pass
     integratePositions(ctx);       // particles: overlaps and link lengths corrected
@@ -72,7 +72,10 @@ StepContext World::beginStep() {
   const StabilityReport& report = stabilityReport();
   const bool reach = bodyForcesReachParticles(body_generators_);
   substeps_used_ = report.substeps_used;
-  if (!bodies_.empty()) substeps_used_ = std::max(substeps_used_, body_settings_.substeps);
+  if (!bodies_.empty() && bodiesMove()) {
+    substeps_used_ = std::max(substeps_used_, body_settings_.substeps);
+    body_substep_ = config_.dt / static_cast<Real>(substeps_used_);
+  }
   StepCaches& caches = *caches_;
   StepContext ctx(
       config_, collision_settings_, particles_, generators_, links_, colliders_, materials_,

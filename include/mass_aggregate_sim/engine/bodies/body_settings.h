@@ -12,7 +12,8 @@ namespace engine {
 // integrates positions, and relaxes once without the bias (so the bias leaves no velocity
 // behind); restitution is applied once after the substeps.
 struct BodySettings {
-  // A world with bodies takes at least this many substeps per step (particles take the same).
+  // While a body can move, the world takes at least this many substeps per step (particles take
+  // the same); once every body is fixed or asleep, from the step after, the particles' own.
   int substeps = 4;
   // Passes over the joints and contacts per substep (the first warm started), and relaxing passes
   // after the positions move.

@@ -153,7 +153,9 @@ class World {
   // rest under them); the same settings change nothing.
   Status setBodySettings(const BodySettings& settings);
   const BodySettings& bodySettings() const { return body_settings_; }
-  // Every body contact with at least one point, as of the last step, in the solver's order.
+  // Every body contact with at least one point, as of the last step, in the solver's order; its
+  // impulses are over a substep of the last step (dt / substepsUsed()), also while the bodies
+  // sleep and the step was not theirs.
   std::vector<BodyContactReport> bodyContacts() const;
   // The islands of dynamic bodies as sleeping forms them: joined by the last step's touching
   // body contacts and by joints between two bodies (fixed and kinematic bodies join none), awake
@@ -176,7 +178,7 @@ class World {
   Result<JointId> addJoint(Kind joint);
   Status removeJoint(JointId id);
   const Joints& joints() const { return joints_; }
-  // Every joint's force and torque on its end b in the last substep, sorted by id.
+  // Every joint's force and torque on its end b in the body solver's last substep, sorted by id.
   std::vector<JointReaction> jointReactions() const;
   // A hinge's motor, changed while it runs.
   Status setHingeMotor(JointId id, bool enabled, Real speed, Real max_torque);
@@ -241,7 +243,9 @@ class World {
   // date with the scene. !stable is the warning: it names the spring, its omega*h and stable dt.
   // Springs on bodies count (analysePointSpringStability), against the bodies' substeps.
   const StabilityReport& stabilityReport() const;
-  // Substeps the last step took (auto_substep can raise config().substeps).
+  // Substeps the last step took: config().substeps (auto_substep can raise it), and at least
+  // BodySettings::substeps while a body can move or holds a particle (not when every body is
+  // fixed or asleep: particles resting on them then keep their own).
   int substepsUsed() const { return substeps_used_; }
   // True after a divergence under DivergencePolicy::kPause (or kReset without a snapshot): step()
   // and advance() do nothing until resume().
@@ -277,6 +281,9 @@ class World {
   void finalise(StepContext& ctx);
   void applyDivergencePolicy();
   bool contactsActive() const;
+  // Whether the body solver has work this step (world_bodies.cpp), so the step takes the bodies'
+  // substeps.
+  bool bodiesMove() const;
 
   WorldConfig config_;
   ParticleStore particles_;
@@ -302,6 +309,8 @@ class World {
   Real accumulator_ = 0.0;
   bool has_external_force_ = false;
   int substeps_used_ = 1;
+  // The substep the body solver last took: the impulses its contacts and joints keep are over it.
+  Real body_substep_ = 0.0;
   bool paused_ = false;
   std::shared_ptr<const World> reset_snapshot_;
   ContactStats last_contact_stats_;
