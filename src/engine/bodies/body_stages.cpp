@@ -214,7 +214,7 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
     joints.push_back(joint);
     rows.push_back(row);
   };
-  std::vector<BodyWorkspace::LinkImpulse> previous;
+  KeptImpulses previous;
   previous.swap(ws.link_impulses);
   ctx.links.forEach([&](const auto& kind) {
     using Kind = typename std::decay_t<decltype(kind)>::value_type;
@@ -227,12 +227,9 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
       joint.min_length = limits.pulls_only ? 0.0 : limits.length;
       joint.max_length = limits.length;
       joint.id = link.id;
-      const auto it = std::lower_bound(
-          previous.begin(), previous.end(), link.id,
-          [](const BodyWorkspace::LinkImpulse& x, const GeneratorId id) { return x.id < id; });
-      if (it != previous.end() && it->id == link.id) {
-        joint.lower_impulse = it->lower;
-        joint.upper_impulse = it->upper;
+      if (const KeptImpulses::Entry* kept = previous.find(link.id)) {
+        joint.lower_impulse = kept->lower;
+        joint.upper_impulse = kept->upper;
       }
       addRow(joint, link_softness, ws.link_joints, ws.link_rows);
     }
@@ -244,10 +241,9 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
     DistanceJoint joint = DistanceJoint::pushOnly(JointEnd::atParticle(particles.idAt(c.a)),
                                                   JointEnd::atParticle(particles.idAt(c.b)),
                                                   radius[c.a] + radius[c.b]);
-    const auto it = std::lower_bound(
-        ws.pair_impulses.begin(), ws.pair_impulses.end(), c.key,
-        [](const BodyWorkspace::PairImpulse& p, const std::uint64_t key) { return p.key < key; });
-    if (it != ws.pair_impulses.end() && it->key == c.key) joint.lower_impulse = it->impulse;
+    if (const KeptImpulses::Entry* kept = ws.pair_impulses.find(c.key)) {
+      joint.lower_impulse = kept->lower;
+    }
     // Rigid: a pair row only keeps the two from closing; the particle solver's positions stage
     // takes out their overlap (a soft row's bias would push them apart with real velocity, and
     // a resting column would bounce). Both ends are joined, so the row is always made.
@@ -639,20 +635,14 @@ void finaliseBodies(StepContext& ctx) {
   if (ws.prepared) storeImpulses(ws.constraints, ws.contacts);
   ws.link_impulses.clear();
   for (const DistanceJoint& link : ws.link_joints) {
-    ws.link_impulses.push_back({link.id, link.lower_impulse, link.upper_impulse});
+    ws.link_impulses.add(link.id, link.lower_impulse, link.upper_impulse);
   }
-  std::sort(ws.link_impulses.begin(), ws.link_impulses.end(),
-            [](const BodyWorkspace::LinkImpulse& x, const BodyWorkspace::LinkImpulse& y) {
-              return x.id < y.id;
-            });
+  ws.link_impulses.sortByKey();
   ws.pair_impulses.clear();
   for (std::size_t k = 0; k < ws.pair_joints.size(); ++k) {
-    ws.pair_impulses.push_back({ws.pair_keys[k], ws.pair_joints[k].lower_impulse});
+    ws.pair_impulses.add(ws.pair_keys[k], ws.pair_joints[k].lower_impulse);
   }
-  std::sort(ws.pair_impulses.begin(), ws.pair_impulses.end(),
-            [](const BodyWorkspace::PairImpulse& x, const BodyWorkspace::PairImpulse& y) {
-              return x.key < y.key;
-            });
+  ws.pair_impulses.sortByKey();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies.force(i).setZero();
     bodies.torque(i).setZero();

@@ -10,11 +10,11 @@
 #include "engine/bodies/contact_constraint.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/joint_rows.h"
+#include "engine/bodies/kept_impulses.h"
 #include "engine/bodies/kept_mass_pool.h"
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
 #include "engine/collision/dynamic_tree.h"
-#include "mass_aggregate_sim/engine/forces/force_kind.h"
 #include "mass_aggregate_sim/engine/joints/distance_joint.h"
 
 namespace mass_aggregate_sim {
@@ -81,12 +81,7 @@ struct BodyWorkspace {
   // warm start the next step (state, with the joints').
   std::vector<DistanceJoint> link_joints;
   std::vector<JointRow> link_rows;
-  struct LinkImpulse {
-    GeneratorId id;
-    Real lower;
-    Real upper;
-  };
-  std::vector<LinkImpulse> link_impulses;
+  KeptImpulses link_impulses;  // by link id
   // The contacts between those particles and the particles resting on them (closed upwards):
   // push-only distance rows beside the links. The particle solver, which runs first, sees a
   // particle resting on a body as free: a particle on top and the one under it fall together
@@ -97,12 +92,8 @@ struct BodyWorkspace {
   std::vector<DistanceJoint> pair_joints;
   std::vector<JointRow> pair_rows;
   std::vector<std::uint64_t> pair_keys;  // each pair row's particle contact key
-  struct PairImpulse {
-    std::uint64_t key;
-    Real impulse;
-  };
-  std::vector<PairImpulse> pair_impulses;  // by key
-  std::vector<Real> heights;               // per solver body, along -gravity
+  KeptImpulses pair_impulses;            // by contact key; lower only
+  std::vector<Real> heights;             // per solver body, along -gravity
   RestingLoadBuffers resting_loads;
   // The force generators on bodies, this substep: per moving body (by solver body; empty without
   // generators) their force and torque about the centre of mass; the particles' external forces,

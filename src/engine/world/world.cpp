@@ -452,14 +452,14 @@ std::uint64_t World::stateHash() const {
       using Kind = typename std::decay_t<decltype(kind)>::value_type;
       for (const auto& joint : kind) JointKind<Kind>::addToHash(joint, hasher);
     });
-    for (const BodyWorkspace::LinkImpulse& link : body_ws_->link_impulses) {
-      hasher.add(static_cast<std::uint64_t>(link.id));
+    for (const KeptImpulses::Entry& link : body_ws_->link_impulses.entries()) {
+      hasher.add(link.key);
       hasher.add(link.lower);
       hasher.add(link.upper);
     }
-    for (const BodyWorkspace::PairImpulse& pair : body_ws_->pair_impulses) {
+    for (const KeptImpulses::Entry& pair : body_ws_->pair_impulses.entries()) {
       hasher.add(pair.key);
-      hasher.add(pair.impulse);
+      hasher.add(pair.lower);
     }
   }
   return hasher.value();

@@ -777,14 +777,20 @@ TEST(BodyContact, AFastParticleMeetsABallItFallsOntoAlongTheTouchNormal) {
   EXPECT_LT((v - Vec3(5.5, 0.0, -5.5)).norm(), 0.1);
 }
 
-// A 0.5 m box of 20 kg on the ground, particle collisions on, and grains of 50 g at `centres`.
-World grainsOnABox(const std::vector<Vec3>& centres) {
+// The ground, with particle collisions on (friction 0.3): a world for grains.
+World groundForGrains() {
   World world(config());
   addGround(world);
   CollisionSettings collisions;
   collisions.particle_collisions = true;
   collisions.particle_friction = 0.3;
   EXPECT_TRUE(world.setCollisionSettings(collisions).isOk());
+  return world;
+}
+
+// A 0.5 m box of 20 kg on the ground, particle collisions on, and grains of 50 g at `centres`.
+World grainsOnABox(const std::vector<Vec3>& centres) {
+  World world = groundForGrains();
   EXPECT_TRUE(world.addBody(body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25))).isOk());
   for (const Vec3& centre : centres) addGrain(world, centre);
   return world;
@@ -944,12 +950,7 @@ TEST(BodyContact, AGrainFallsWhenTheFixedBoxUnderItIsRemoved) {
 // lowest grain rested 0.11 mm deep at the particles' substep, not 1.5 um.
 TEST(BodyContact, AColumnOfGrainsOnAFixedBoxRestsAsOnABoxCollider) {
   const auto column = [](const bool on_a_body) {
-    World world(config());
-    addGround(world);
-    CollisionSettings collisions;
-    collisions.particle_collisions = true;
-    collisions.particle_friction = 0.3;
-    EXPECT_TRUE(world.setCollisionSettings(collisions).isOk());
+    World world = groundForGrains();
     if (on_a_body) {
       BodySpec spec =
           body(box(Vec3::Constant(0.25), Material{0.0, 0.5}), 20.0, Vec3(0.0, 0.0, 0.25));
