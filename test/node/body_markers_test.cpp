@@ -154,6 +154,40 @@ TEST(BodySnapshotTest, HingesGiveJointStatesAndContactsTheirForces) {
   EXPECT_EQ(bodies.step, 10u);
 }
 
+// ~contacts' forces are the reported impulses over the last step's substep: a cube resting on the
+// ground weighs m g there while it is awake (the bodies' 4 substeps) and once it sleeps (the
+// world then takes the particles' 1, and the contacts keep their last impulses).
+TEST(BodySnapshotTest, ARestingCubesContactForcesAreItsWeightAwakeAndAsleep) {
+  engine::WorldConfig config;
+  config.dt = 1.0 / 60.0;
+  config.gravity = Vec3(0, 0, -9.81);
+  engine::World world(config);
+  engine::PlaneCollider ground;
+  ASSERT_TRUE(world.addCollider(ground));
+  const auto cube = addBody(world, "cube", Vec3(0, 0, 0.5), engine::BoxShape{Vec3::Constant(0.5)});
+  const std::size_t i = *world.bodies().find(cube);
+  const double weight = world.bodies().mass(i) * 9.81;
+  const auto contactForce = [&world]() {
+    WorldSnapshot snapshot;
+    takeSnapshot(world, snapshot, {}, true);
+    BodyContactArray msg;
+    fillContacts(snapshot.bodies, {}, {}, snapshot.step, snapshot.time, msg);
+    double force = 0.0;
+    for (const auto& contact : msg.contacts) {
+      for (const auto& point : contact.points) force += point.normal_force;
+    }
+    return force;
+  };
+  for (int step = 0; step < 10; ++step) world.step();
+  ASSERT_TRUE(world.bodies().awake(i));
+  EXPECT_EQ(world.substepsUsed(), world.bodySettings().substeps);
+  EXPECT_NEAR(contactForce(), weight, 0.01 * weight);
+  for (int step = 0; step < 110; ++step) world.step();
+  ASSERT_FALSE(world.bodies().awake(i));
+  EXPECT_EQ(world.substepsUsed(), 1);
+  EXPECT_NEAR(contactForce(), weight, 0.01 * weight);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mass_aggregate_sim
