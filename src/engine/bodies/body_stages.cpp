@@ -76,6 +76,7 @@ void loadParticles(StepContext& ctx, const bool predicted) {
     sb.v = v.col(p);
     sb.dp = x.col(p) - lead * sb.v - ws.particle_start.col(static_cast<Eigen::Index>(k));
     ws.particle_velocity.col(static_cast<Eigen::Index>(k)) = sb.v;
+    ws.particle_moved.col(static_cast<Eigen::Index>(k)) = sb.dp;
   }
 }
 
@@ -94,6 +95,10 @@ void storeParticles(StepContext& ctx, const bool move) {
       x.col(p) +=
           beta_h * (sb.v - ws.particle_velocity.col(static_cast<Eigen::Index>(k))) + ctx.h * sb.pv;
       sb.pv.setZero();
+      // An impact moved it back to where it touched and turned (resolveImpact); without this it
+      // turned where the substep began, up to |v| h short of the surface (a particle at 40 m/s
+      // striking a plate with restitution 0.25 turned 6.5 cm above it).
+      if (sb.flew) x.col(p) += sb.dp - ws.particle_moved.col(static_cast<Eigen::Index>(k));
     }
     v.col(p) = sb.v;
   }
@@ -586,6 +591,7 @@ void generateBodyContacts(StepContext& ctx) {
   const auto count = static_cast<Eigen::Index>(ws.particle_of_solver.size());
   ws.particle_start.resize(3, count);
   ws.particle_velocity.resize(3, count);
+  ws.particle_moved.resize(3, count);
   const auto x = ctx.particles.positions();
   const auto v = ctx.particles.velocities();
   const Real lead = particleLead(ctx);

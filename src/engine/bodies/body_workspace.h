@@ -69,6 +69,7 @@ struct BodyWorkspace {
   std::size_t first_particle = 0;
   Vec3Array particle_start;     // where they moved from when the step began (particleLead)
   Vec3Array particle_velocity;  // their velocities before the body solver, this substep
+  Vec3Array particle_moved;     // their moves since particle_start, as the body solver loaded them
   std::vector<ContactConstraint> constraints;
   std::vector<ContactSides> constraint_sides;  // each constraint's sides as prepared
   std::vector<ShockRow> shock_rows;            // bottom up, as the constraints

@@ -975,6 +975,32 @@ TEST(BodyContact, AColumnOfGrainsOnAFixedBoxRestsAsOnABoxCollider) {
   EXPECT_LT((on_body - on_collider).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// A particle at 40 m/s strikes a fixed plate (no gravity, restitution 0.25 on both sides, no
+// collider: the contact is a body row) in the second substep, 6.75 ms into the step, and leaves
+// at 10 m/s from the plate's face: 1.06 + 10 (1/60 - 0.00675) = 1.159167 at the step's end. The
+// body solver's impact moved it back to the touch, but only a body's position kept that: the
+// particle turned where the substep began, 10 cm above the plate, and ended the step at 1.2883.
+TEST(BodyContact, AFastParticleBouncesFromTheFaceOfAFixedPlate) {
+  World world(config(0.0));
+  BodySpec plate = body(box(Vec3(0.5, 0.5, 0.01), Material{0.25, 0.5}), 20.0, Vec3(0, 0, 1.0));
+  plate.type = BodyType::kFixed;
+  ASSERT_TRUE(world.addBody(plate).isOk());
+  CollisionSettings collisions = world.collisionSettings();
+  collisions.particle_restitution = 0.25;
+  ASSERT_TRUE(world.setCollisionSettings(collisions).isOk());
+  ParticleSpec spec;
+  spec.position = Vec3(0.0, 0.0, 1.01 + kGrainRadius + 0.27);
+  spec.velocity = Vec3(0.0, 0.0, -40.0);
+  spec.radius = kGrainRadius;
+  spec.inverse_mass = 20.0;
+  ASSERT_TRUE(world.addParticle(spec));
+  world.step();
+  const Real touch = 0.27 / 40.0;
+  EXPECT_NEAR(world.particles().velocities()(2, 0), 10.0, 1e-9);
+  EXPECT_NEAR(world.particles().positions()(2, 0),
+              1.01 + kGrainRadius + 10.0 * (world.config().dt - touch), 1e-9);
+}
+
 TEST(BodyContact, AFastBallStopsAtAThinFixedBody) {
   World world(config(0.0));
   BodySpec wall = body(box(Vec3(0.01, 1.0, 1.0), Material{0.0, 0.0}), 1.0, Vec3(2.0, 0.0, 0.0));
