@@ -97,7 +97,7 @@ void storeParticles(StepContext& ctx, const bool move) {
       sb.pv.setZero();
       // An impact moved it back to where it touched and turned (resolveImpact); without this it
       // turned where the substep began, up to |v| h short of the surface (a particle at 40 m/s
-      // striking a plate with restitution 0.25 turned 6.5 cm above it).
+      // striking a plate with restitution 0.25 turned 10 cm above it).
       if (sb.flew) x.col(p) += sb.dp - ws.particle_moved.col(static_cast<Eigen::Index>(k));
     }
     v.col(p) = sb.v;

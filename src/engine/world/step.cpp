@@ -72,7 +72,7 @@ StepContext World::beginStep() {
   const StabilityReport& report = stabilityReport();
   const bool reach = bodyForcesReachParticles(body_generators_);
   substeps_used_ = report.substeps_used;
-  if (!bodies_.empty() && bodiesMove()) {
+  if (!bodies_.empty() && bodiesMove(reach)) {
     substeps_used_ = std::max(substeps_used_, body_settings_.substeps);
     body_substep_ = config_.dt / static_cast<Real>(substeps_used_);
   }

@@ -11,7 +11,6 @@
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
 #include "engine/collision/narrowphase/any_shape.h"
-#include "engine/forces/body_force_stage.h"
 #include "engine/joints/joint_ends.h"
 #include "engine/solver/contact_workspace.h"
 #include "mass_aggregate_sim/engine/bodies/mass_properties.h"
@@ -219,13 +218,13 @@ Status World::setBodySettings(const BodySettings& settings) {
 // rows to the particle solver at the substep it was solved at, and changes substep a step later,
 // warm started (a pile changing both at once jolted: the grains of a bin that had just fallen
 // asleep left that step at 5 to 11 cm/s and woke it again, each time).
-bool World::bodiesMove() const {
+bool World::bodiesMove(const bool reach) const {
   if (body_ws_->prepared) return true;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     if (bodies_.awake(i) && bodies_.type(i) != BodyType::kFixed) return true;
   }
   if (!particles_.empty() && !contactsActive()) return true;
-  if (bodyForcesReachParticles(body_generators_)) return true;
+  if (reach) return true;
   bool holds_particle = false;
   joints_.forEach([&](const auto& kind) {
     for (const auto& joint : kind) {

@@ -282,8 +282,8 @@ class World {
   void applyDivergencePolicy();
   bool contactsActive() const;
   // Whether the body solver has work this step (world_bodies.cpp), so the step takes the bodies'
-  // substeps.
-  bool bodiesMove() const;
+  // substeps; `reach`: a force generator on bodies reaches a particle (bodyForcesReachParticles).
+  bool bodiesMove(bool reach) const;
 
   WorldConfig config_;
   ParticleStore particles_;
