@@ -16,8 +16,10 @@ void beginBodyStep(StepContext& ctx);
 // v += h (g + F / m), w by the torque and the gyroscopic term (implicit), damping.
 void integrateBodyVelocities(StepContext& ctx);
 // First substep: the tree follows the awake bodies; the narrowphase; islands an awake body
-// touches wake; the contacts ordered bottom up; a particle's contact with a still body (fixed or
-// asleep) handed to the particle solver (ContactWorkspace::StillSurface).
+// touches wake; the contacts ordered bottom up; a particle's contact with a body lent to the
+// particle solver as the body's surface (ContactWorkspace::BodySurface): a still body's (fixed or
+// asleep) to hold the particle, a moving body's to keep it out in the positions stage. Every
+// substep: the moving bodies' surfaces follow them.
 void findBodyPairs(StepContext& ctx);
 // First substep: the particles that touch moving bodies join the body solver; the rows of the
 // step.

@@ -76,6 +76,17 @@ struct BodyWorkspace {
   std::vector<std::int32_t> carrier_of;  // per solver body: what carries its pile (shock rows)
   std::vector<Vec3> carrier_center_of;
   std::vector<std::pair<Real, std::uint32_t>> contact_order;  // (height, contact) of the rows
+  // The moving bodies' surfaces lent to the particles' positions stage
+  // (ContactWorkspace::BodySurface::moves): the surface, its body's solver body, and as the step
+  // began a point of the plane, its normal and the body's centre.
+  struct MovingSurface {
+    std::uint32_t surface = 0;
+    std::int32_t solver = kNoBody;
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();
+    Vec3 center = Vec3::Zero();
+  };
+  std::vector<MovingSurface> moving_surfaces;
   // The particle links (cables, rods) of the particles the body solver moves, and of the
   // particles linked to those: solved with the joints, so that a rope of particles holding a body
   // carries its load (the particle solver alone cannot see the body). Their impulses, by link id,

@@ -51,7 +51,7 @@ class ContactSink {
   std::size_t& position_only_;
 };
 
-// Particle i against a surface that does not move in the solver: a collider's, or a still body's.
+// Particle i against a surface that does not move in the solver: a collider's, or a body's.
 void surfaceContact(Contact* c, const std::uint32_t i, const std::uint64_t key,
                     const ShapeContact& shape, const Material& material) {
   if (c == nullptr) return;
@@ -380,18 +380,21 @@ bool generateColliderContacts(StepContext& ctx, const std::size_t begin, const s
   return in_two;
 }
 
-void addStillSurfaceContacts(StepContext& ctx) {
+void addBodySurfaceContacts(StepContext& ctx) {
   ContactWorkspace& ws = ctx.contacts;
   const auto x = ctx.particles.positions();
   const auto radius = ctx.particles.radii();
   const Real margin = contactMargin(ctx.collisions.penetration_slop);
   ContactSink sink(ws.contacts, ctx.collisions.max_contacts, ctx.dropped,
                    ws.position_only_contacts);
-  for (const ContactWorkspace::StillSurface& surface : ws.still_surfaces) {
+  for (const ContactWorkspace::BodySurface& surface : ws.body_surfaces) {
     const Real penetration = surface.offset - surface.normal.dot(x.col(surface.particle));
     if (!(penetration > -positionOnlyReach(radius[surface.particle]))) continue;
-    surfaceContact(penetration > -margin ? sink.add() : sink.addPositionOnly(), surface.particle,
-                   stillSurfaceContactKey(ws.slots[surface.particle], surface.shape),
+    const std::uint32_t slot = ws.slots[surface.particle];
+    surfaceContact(penetration > -margin && !surface.moves ? sink.add() : sink.addPositionOnly(),
+                   surface.particle,
+                   surface.moves ? movingSurfaceContactKey(slot, surface.shape)
+                                 : stillSurfaceContactKey(slot, surface.shape),
                    ShapeContact{surface.normal, penetration}, surface.material);
   }
 }
@@ -446,7 +449,7 @@ void generateContacts(StepContext& ctx) {
       !ctx.links.empty() || (settings.particle_collisions && !ws.pairs.empty());
   ws.particle_in_two_collider_contacts =
       !ctx.colliders.empty() && generateColliderContacts(ctx, 0, n);
-  if (ctx.bodies) addStillSurfaceContacts(ctx);
+  if (ctx.bodies) addBodySurfaceContacts(ctx);
 
   if (settings.particle_collisions) {
     const bool filter = !settings.collide_linked && !ws.linked_pairs.empty();

@@ -23,9 +23,10 @@ bool generateColliderContacts(StepContext& ctx, std::size_t begin, std::size_t e
 // groups test in lanes), for solveColliderGroups(): 0, 1 (in `contact`), or 2 when there are two
 // or more or a swept test stopped the particle. `context` is the StepContext.
 int otherColliderContacts(const void* context, std::size_t i, GroupContact& contact);
-// The particles' contacts with still bodies' surfaces (ContactWorkspace::StillSurface), at their
-// positions now, appended to ctx.contacts.contacts as colliders' are made.
-void addStillSurfaceContacts(StepContext& ctx);
+// The particles' contacts with bodies' surfaces (ContactWorkspace::BodySurface), at their
+// positions now, appended to ctx.contacts.contacts as colliders' are made (a moving body's
+// position-only).
+void addBodySurfaceContacts(StepContext& ctx);
 // Whether only collider contacts can occur this substep (no links, no particle pairs).
 bool onlyColliderContacts(const StepContext& ctx);
 

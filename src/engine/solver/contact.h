@@ -48,7 +48,7 @@ struct LinkGeometry {
 };
 
 // Keys: particle pairs by their two slots, particle-collider by slot and collider id, links by id,
-// particle-body surface (ContactWorkspace::StillSurface) by slot and body shape.
+// particle-body surface (ContactWorkspace::BodySurface) by slot and body shape.
 inline std::uint64_t pairContactKey(std::uint32_t slot_a, std::uint32_t slot_b) {
   if (slot_a > slot_b) std::swap(slot_a, slot_b);
   return (std::uint64_t{slot_a} << 31) ^ slot_b;
@@ -61,6 +61,11 @@ inline std::uint64_t linkContactKey(const std::uint32_t link) {
 }
 inline std::uint64_t stillSurfaceContactKey(const std::uint32_t slot, const std::uint32_t shape) {
   return (std::uint64_t{3} << 62) | ((std::uint64_t{slot} << 31) ^ shape);
+}
+// A moving body's surface is position-only: never an impulse the report could mistake for the
+// body rows'.
+inline std::uint64_t movingSurfaceContactKey(const std::uint32_t slot, const std::uint32_t shape) {
+  return stillSurfaceContactKey(slot, shape) ^ (std::uint64_t{1} << 61);
 }
 
 }  // namespace engine

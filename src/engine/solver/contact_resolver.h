@@ -142,6 +142,14 @@ class ContactResolver {
     }
   }
 
+  // A particle moved outside the resolver after the velocity phase (by the body solver): the
+  // positions stage measures its rows' depths after the move.
+  void addMove(const std::uint32_t i, const Vec3& move) {
+    if (static_cast<std::size_t>(i) >= touched_flag_.size()) return;
+    displacement_.col(i) += move;
+    touch(i);
+  }
+
  private:
   using Row = ParticleRow;
 

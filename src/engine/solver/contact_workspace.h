@@ -25,20 +25,22 @@ struct ContactWorkspace {
   // This substep's generation gave some particle contacts with two or more colliders.
   bool particle_in_two_collider_contacts = false;
   std::vector<LinkGeometry> links;  // of the link contacts, by Contact::link
-  // A particle's contact with the surface of a body that does not move this step (fixed or
-  // asleep), as the body contact stage found it in the first substep: the particle solver takes it
-  // as a collider's, the surface as a plane along the contact's normal, each substep at the
-  // particle's position then. So a pile resting in a still bin is the particles' own pile, solved
-  // as on colliders, and no body row joins it.
-  struct StillSurface {
+  // A particle's contact with the surface of a body, as the body contact stage found it in the
+  // first substep, as a plane along the contact's normal, each substep at the particle's position
+  // then. A still body's (fixed or asleep) is the particle solver's as a collider's: a pile
+  // resting in a still bin is the particles' own pile, solved as on colliders, and no body row
+  // joins it. A moving body's is the body rows' and only keeps the particle out in the positions
+  // stage (position-only), the plane following the body (findBodyPairs).
+  struct BodySurface {
     std::uint32_t particle = 0;
     std::uint32_t shape = 0;
     Vec3 normal = Vec3::UnitZ();
     Real offset = 0.0;  // separation = n.x - offset (the radii in it)
     Material material;  // combined as the body contact's
+    bool moves = false;
   };
-  std::vector<StillSurface> still_surfaces;  // this step's (made when the world has bodies)
-  std::vector<std::uint32_t> slots;          // per particle: its id's slot, for the contact keys
+  std::vector<BodySurface> body_surfaces;  // this step's (made when the world has bodies)
+  std::vector<std::uint32_t> slots;        // per particle: its id's slot, for the contact keys
   std::uint64_t slots_layout = ~std::uint64_t{0};  // ParticleStore::layoutVersion() of slots
   std::vector<Contact> sorted_contacts;
   // Bottom-up order: per pair or contact its height bucket, and the counting sort's buckets.

@@ -85,7 +85,7 @@ void solveConstraints(StepContext& ctx) {
   ParticleStore& particles = ctx.particles;
   ws.solved_in_parts = false;
   const bool only_colliders = onlyColliderContacts(ctx);
-  const bool surfaces = ctx.bodies && !ws.still_surfaces.empty();
+  const bool surfaces = ctx.bodies && !ws.body_surfaces.empty();
   if (only_colliders && settings.max_contacts == 0) {
     if (!surfaces) {
       solveColliderContactsInParts(ctx);
@@ -96,7 +96,7 @@ void solveConstraints(StepContext& ctx) {
     ws.collider_position_only = false;
     ws.particle_in_two_collider_contacts =
         !ctx.colliders.empty() && generateColliderContacts(ctx, 0, particles.size());
-    addStillSurfaceContacts(ctx);
+    addBodySurfaceContacts(ctx);
   }
   // Isolated contacts are looked for when all contacts are with colliders (most are then
   // isolated: a particle meets two colliders only in a corner); with particle pairs or links

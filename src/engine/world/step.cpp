@@ -26,8 +26,8 @@ void World::step() {
     integrateVelocities(ctx);      // particles: the integrator (velocities, positions predicted)
     integrateBodyVelocities(ctx);  // bodies: forces and torques, the gyroscopic term implicit
     findPairs(ctx);                // candidate particle pairs; swept tests
-    findBodyPairs(ctx);            // first substep: body contacts; particles' on still bodies
-    generateContacts(ctx);         // particles against colliders, still bodies, each other; links
+    findBodyPairs(ctx);            // first substep: body contacts; bodies' surfaces for particles
+    generateContacts(ctx);         // particles against colliders, body surfaces, each other; links
     generateBodyContacts(ctx);     // first substep: the step's body rows
     solveConstraints(ctx);         // particle rows: impulses, friction; resting particles follow
     solveBodyConstraints(ctx);     // body rows and joints: warm start, one soft pass

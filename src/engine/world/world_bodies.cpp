@@ -211,7 +211,7 @@ Status World::setBodySettings(const BodySettings& settings) {
 }
 
 // When every body is fixed or asleep and none holds a particle, the bodies only lend the particle
-// solver their surfaces (StillSurface) and the step need not take their substeps: a pile resting
+// solver their surfaces (BodySurface) and the step need not take their substeps: a pile resting
 // in a sleeping bin then costs what it does in a bin of colliders. Without the particle solver's
 // contacts a particle meets a still body through body rows, which are solved at the bodies'
 // substeps. The step after the last body stopped still takes them: its pile passes from the body
@@ -265,7 +265,7 @@ std::vector<BodyContactReport> World::bodyContacts() const {
         r.particle = ParticleId::fromPacked(c.key.b);
         break;
     }
-    // A particle on a still body was the particle solver's this step (StillSurface): its
+    // A particle on a still body was the particle solver's this step (BodySurface): its
     // impulses are there.
     Real normal = 0.0;
     Vec3 friction = Vec3::Zero();

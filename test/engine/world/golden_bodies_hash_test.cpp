@@ -14,7 +14,7 @@ namespace {
 
 using namespace test_bodies;
 
-constexpr std::uint64_t kBodiesGoldenHash = 0x960e1bb6c8438e3bull;
+constexpr std::uint64_t kBodiesGoldenHash = 0x933ceeeef8a48200ull;
 constexpr int kBodiesGoldenSteps = 600;
 
 // A stack of three boxes (asleep by the end), a hinged rod swinging, a chain of three spheres on
