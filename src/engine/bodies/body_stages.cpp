@@ -342,7 +342,7 @@ void forEachJointRow(StepContext& ctx, F&& f) {
 ContactPass contactPass(const StepContext& ctx, const bool use_bias, const bool top_down) {
   const BodySettings& s = *ctx.body_settings;
   return ContactPass{ctx.h,         use_bias, s.max_push_speed, s.restitution_threshold,
-                     s.linear_slop, top_down};
+                     s.linear_slop, top_down, s.sleep_speed};
 }
 
 void warmStart(StepContext& ctx) {
@@ -366,7 +366,8 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
 // bodies, one resting on the other (normal within 45 degrees of gravity's line), that carry a
 // load (warm started or guessed). Two bodies touching in flight, or held together by a joint,
 // carry none and are left to the passes. Each row's carrier is the body of infinite mass (a
-// kinematic one) its lower side rests on, directly or through the bodies below it, if any.
+// kinematic one) its lower side rests on, directly or through the bodies below it, if any; its
+// base the lowest moving body under it, and whether that rests on something still.
 void prepareShockRows(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.shock_rows.clear();
@@ -375,6 +376,17 @@ void prepareShockRows(StepContext& ctx) {
   const Vec3 up_unit = up.normalized();
   ws.carrier_of.assign(ws.solver.size(), kNoBody);
   ws.carrier_center_of.assign(ws.solver.size(), Vec3::Zero());
+  ws.base_of.assign(ws.solver.size(), kNoBody);
+  ws.on_still.assign(ws.solver.size(), 0);
+  for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
+    const ContactSides& sides = ws.constraint_sides[r];
+    if ((sides.a == kNoBody) == (sides.b == kNoBody)) continue;
+    // n points from a to b: b rests on a when n points up.
+    const Real vertical = ws.constraints[r].normal.dot(up_unit);
+    if (std::abs(vertical) < std::sqrt(0.5)) continue;
+    const std::int32_t above = vertical > 0.0 ? sides.b : sides.a;
+    if (above != kNoBody) ws.on_still[static_cast<std::size_t>(above)] = 1;
+  }
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     if (r + kPrefetchAhead < ws.constraints.size()) {
       ws.kept_masses.prefetch(ws.contacts[ws.constraints[r + kPrefetchAhead].contact],
@@ -402,6 +414,9 @@ void prepareShockRows(StepContext& ctx) {
       ws.carrier_of[above] = carrier;
       ws.carrier_center_of[above] = carrier_center;
     }
+    const std::int32_t base =
+        ws.base_of[lower] != kNoBody ? ws.base_of[lower] : static_cast<std::int32_t>(lower);
+    if (ws.base_of[above] == kNoBody) ws.base_of[above] = base;
     BodyContact& contact = ws.contacts[c.contact];
     ShockRow& row = ws.shock_rows.emplace_back();
     row.constraint = r;
@@ -409,6 +424,8 @@ void prepareShockRows(StepContext& ctx) {
                      row.upper_alone);
     row.carrier = carrier;
     row.lower_from_carrier = lower_center - carrier_center;
+    row.base = base;
+    row.base_on_still = ws.on_still[static_cast<std::size_t>(base)] != 0;
   }
 }
 

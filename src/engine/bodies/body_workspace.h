@@ -75,6 +75,8 @@ struct BodyWorkspace {
   std::vector<ShockRow> shock_rows;            // bottom up, as the constraints
   std::vector<std::int32_t> carrier_of;  // per solver body: what carries its pile (shock rows)
   std::vector<Vec3> carrier_center_of;
+  std::vector<std::int32_t> base_of;   // per solver body: the lowest moving body of its pile
+  std::vector<std::uint8_t> on_still;  // per solver body: it rests on something still
   std::vector<std::pair<Real, std::uint32_t>> contact_order;  // (height, contact) of the rows
   // The moving bodies' surfaces lent to the particles' positions stage
   // (ContactWorkspace::BodySurface::moves): the surface, its body's solver body, and as the step

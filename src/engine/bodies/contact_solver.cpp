@@ -774,11 +774,12 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
 
 namespace {
 
-// The shock row's contact, with its lower side in s.
-void solveShock(ContactConstraint& upper, Sides& s, const ContactPass& pass, const Real inverse_h) {
+// The shock row's contact, with its lower side in s; its friction too unless told not.
+void solveShock(ContactConstraint& upper, Sides& s, const ContactPass& pass, const Real inverse_h,
+                const bool with_friction) {
   takeSeparations(upper, s);
   if (!upper.impact_now) solveNormals(upper, s, pass, inverse_h);
-  if (upper.friction > 0.0) solveFriction(upper, s);
+  if (with_friction && upper.friction > 0.0) solveFriction(upper, s);
 }
 
 }  // namespace
@@ -795,8 +796,11 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     upper.friction_impulse[1] = c.friction_impulse[1];
     upper.twist_impulse = c.twist_impulse;
     if (row.carrier == kNoBody) {
+      if (!row.base_on_still) continue;
+      const bool slides = bodies[static_cast<std::size_t>(row.base)].v.squaredNorm() >
+                          pass.still_speed * pass.still_speed;
       Sides s(upper, bodies);
-      solveShock(upper, s, pass, inverse_h);
+      solveShock(upper, s, pass, inverse_h, !slides);
       continue;
     }
     // The lower side moves with the carrier (taking no impulse) where the lower body is; its
@@ -812,7 +816,7 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     held.inverse_inertia = Mat3::Zero();
     SolverBody& moving = bodies[static_cast<std::size_t>(lower_is_a ? c.b : c.a)];
     Sides s(lower_is_a ? held : moving, lower_is_a ? moving : held);
-    solveShock(upper, s, pass, inverse_h);
+    solveShock(upper, s, pass, inverse_h, true);
   }
 }
 

@@ -921,18 +921,46 @@ Real gapOverBox(const World& world, const BodyId id) {
          (world.bodies().position(b).z() + 0.25);
 }
 
-// A box carrying a column of four grains falls 2 m onto the ground: the positions stage pushed the
-// lowest grain 3.6 cm into the box as the column landed.
-TEST(BodyContact, GrainsOnAFallingBoxLandWithItWithoutSinkingIn) {
+// A box carrying a column of four grains falls 2 m onto the ground. The grains fall with it: the
+// shock pass held them still in the ground's frame through the first step, so they fell a step
+// behind the box, 5 cm above it when it landed. And they land with it: the positions stage
+// pushed the lowest 3.6 cm into the box as the column landed.
+TEST(BodyContact, GrainsRideAFallingBoxAndLandWithIt) {
   World world = groundForGrains();
   const BodyId id = *world.addBody(body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 2.25)));
   for (int k = 0; k < 4; ++k) addGrain(world, Vec3(0.0, 0.0, 2.5 + kGrainRadius * (1 + 2 * k)));
   Real deepest = 0.0;
+  Real widest_in_flight = 0.0;
   for (int step = 0; step < 120; ++step) {
     world.step();
-    deepest = std::min(deepest, gapOverBox(world, id));
+    const Real gap = gapOverBox(world, id);
+    deepest = std::min(deepest, gap);
+    if (world.bodies().position(*world.bodies().find(id)).z() > 0.3) {
+      widest_in_flight = std::max(widest_in_flight, gap);
+    }
   }
   EXPECT_GT(deepest, -2e-3);
+  EXPECT_LT(widest_in_flight, 1e-3);
+}
+
+// A grain on a box sliding at 3 m/s on a frictionless ground rides it (friction 0.3): braked in
+// the ground's frame by the shock pass, it slid off the box's back within half a second.
+TEST(BodyContact, AGrainRidesASlidingBox) {
+  World world(config());
+  addGround(world, Material{0.0, 0.0});
+  CollisionSettings collisions;
+  collisions.particle_friction = 0.3;
+  ASSERT_TRUE(world.setCollisionSettings(collisions).isOk());
+  BodySpec cart = body(box(Vec3(0.5, 0.5, 0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
+  cart.linear_velocity = Vec3(3.0, 0.0, 0.0);
+  const BodyId id = *world.addBody(cart);
+  addMovingGrains(world, {Vec3(0.0, 0.0, 0.5 + kGrainRadius)}, cart.linear_velocity);
+  for (int step = 0; step < 60; ++step) world.step();
+  const std::size_t b = *world.bodies().find(id);
+  const Vec3 grain = world.particles().positions().col(0);
+  EXPECT_NEAR(grain.x() - world.bodies().position(b).x(), 0.0, 0.01);
+  EXPECT_NEAR(gapOverBox(world, id), 0.0, 1e-3);
+  EXPECT_NEAR(world.particles().velocities()(0, 0), world.bodies().linearVelocity(b).x(), 0.01);
 }
 
 // A kinematic box lifts a column of four grains at 1 m/s: 3.9 mm into it before its surface
