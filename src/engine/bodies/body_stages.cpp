@@ -144,14 +144,16 @@ void jointSide(StepContext& ctx, const JointEnd& end, std::int32_t& solver, Vec3
 // surface where the particle met it, n.x = n.x_0 - s_0 at the particle's start x_0, separation
 // s_0. Joined to the body solver instead, a pile resting in a sleeping bin was all in it (the
 // closure upwards), its contacts body rows in every substep: 1,000 grains cost 4.65 ms a step,
-// 0.86 now (BM_GrainBin). A moving body's (its solver body `solver`) stays the body rows' and is
+// 0.86 now (BM_GrainBin). A moving body's (one with a solver body) stays the body rows' and is
 // lent to the particles' positions stage only, following the body (placeMovingSurfaces): that
 // stage, taking a landing column's overlaps out, pushed its lowest grain 3.4 cm into a box.
-void addSurface(StepContext& ctx, const BodyContact& contact, const std::size_t p,
-                const std::int32_t solver) {
+void addSurface(StepContext& ctx, const BodyContact& contact, const std::size_t p) {
   const Manifold& m = contact.manifold;
   const auto i = static_cast<Eigen::Index>(p);
   if (m.count == 0 || !(ctx.particles.inverseMasses()[i] > 0.0)) return;
+  const BodyStore& bodies = *ctx.bodies;
+  const std::size_t body = bodies.denseIndexUnchecked(bodies.shapes()[contact.key.shape].body);
+  const std::int32_t solver = ctx.body_ws->solver_of_body[body];
   const Vec3 start =
       ctx.particles.positions().col(i) - particleLead(ctx) * ctx.particles.velocities().col(i);
   ContactWorkspace::BodySurface surface;
@@ -162,14 +164,12 @@ void addSurface(StepContext& ctx, const BodyContact& contact, const std::size_t 
   surface.material = Material{contact.restitution, contact.friction};
   surface.moves = solver != kNoBody;
   if (surface.moves) {
-    const BodyStore& bodies = *ctx.bodies;
     BodyWorkspace::MovingSurface& moving = ctx.body_ws->moving_surfaces.emplace_back();
     moving.surface = static_cast<std::uint32_t>(ctx.contacts.body_surfaces.size());
     moving.solver = solver;
     moving.point = start - m.points[0].separation * m.normal;
     moving.normal = m.normal;
-    moving.center =
-        bodies.position(bodies.denseIndexUnchecked(bodies.shapes()[contact.key.shape].body));
+    moving.center = bodies.position(body);
   }
   ctx.contacts.body_surfaces.push_back(surface);
 }
@@ -497,13 +497,6 @@ bool nothingToFind(const StepContext& ctx) {
   return ctx.body_ws->solver.empty() && ctx.particles.empty();
 }
 
-// The solver body of the contact's first shape's body (kNoBody: fixed or asleep, still this step).
-std::int32_t solverBodyOf(const StepContext& ctx, const BodyContact& contact) {
-  const BodyStore& bodies = *ctx.bodies;
-  return ctx.body_ws
-      ->solver_of_body[bodies.denseIndexUnchecked(bodies.shapes()[contact.key.shape].body)];
-}
-
 void findBodyPairs(StepContext& ctx) {
   if (!ctx.bodies) return;
   BodyStore& bodies = *ctx.bodies;
@@ -549,8 +542,7 @@ void findBodyPairs(StepContext& ctx) {
   for (const auto& entry : order) {
     const BodyContact& contact = ws.contacts[entry.second];
     if (contact.key.other != ContactOther::kParticle) continue;
-    addSurface(ctx, contact, *ctx.particles.find(ParticleId::fromPacked(contact.key.b)),
-               solverBodyOf(ctx, contact));
+    addSurface(ctx, contact, *ctx.particles.find(ParticleId::fromPacked(contact.key.b)));
   }
   placeMovingSurfaces(ctx);
 }
