@@ -367,7 +367,8 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
 // load (warm started or guessed). Two bodies touching in flight, or held together by a joint,
 // carry none and are left to the passes. Each row's carrier is the body of infinite mass (a
 // kinematic one) its lower side rests on, directly or through the bodies below it, if any; its
-// base the lowest moving body under it, and whether that rests on something still.
+// base the lowest moving body under it, and whether that rests on something still (and through
+// which contacts: ws.still_supports, for gripBases).
 void prepareShockRows(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.shock_rows.clear();
@@ -378,6 +379,7 @@ void prepareShockRows(StepContext& ctx) {
   ws.carrier_center_of.assign(ws.solver.size(), Vec3::Zero());
   ws.base_of.assign(ws.solver.size(), kNoBody);
   ws.on_still.assign(ws.solver.size(), 0);
+  ws.still_supports.clear();
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     const ContactSides& sides = ws.constraint_sides[r];
     if ((sides.a == kNoBody) == (sides.b == kNoBody)) continue;
@@ -385,7 +387,9 @@ void prepareShockRows(StepContext& ctx) {
     const Real vertical = ws.constraints[r].normal.dot(up_unit);
     if (std::abs(vertical) < std::sqrt(0.5)) continue;
     const std::int32_t above = vertical > 0.0 ? sides.b : sides.a;
-    if (above != kNoBody) ws.on_still[static_cast<std::size_t>(above)] = 1;
+    if (above == kNoBody) continue;
+    ws.on_still[static_cast<std::size_t>(above)] = 1;
+    ws.still_supports.emplace_back(r, above);
   }
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     if (r + kPrefetchAhead < ws.constraints.size()) {
@@ -426,6 +430,27 @@ void prepareShockRows(StepContext& ctx) {
     row.lower_from_carrier = lower_center - carrier_center;
     row.base = base;
     row.base_on_still = ws.on_still[static_cast<std::size_t>(base)] != 0;
+  }
+}
+
+// Whether each shock row's base is gripped by what still thing it rests on: a contact whose
+// friction, after this substep's passes, is inside its bound (static friction). A base whose
+// friction slides (at its bound, or none: frictionless ground) is driven or gliding, not coming
+// to rest, so its pile is not held in the ground's frame by friction (propagateShock).
+void gripBases(BodyWorkspace& ws) {
+  ws.grips_still.assign(ws.solver.size(), 0);
+  for (const auto& [r, above] : ws.still_supports) {
+    const ContactConstraint& c = ws.constraints[r];
+    Real load = 0.0;
+    for (int k = 0; k < c.count; ++k) load += c.points[k].normal_impulse;
+    // The passes clamp friction to mu times the load they saw; a hair inside that is sliding.
+    const Real friction = std::hypot(c.friction_impulse[0], c.friction_impulse[1]);
+    if (load > 0.0 && friction < 0.999 * c.friction * load) {
+      ws.grips_still[static_cast<std::size_t>(above)] = 1;
+    }
+  }
+  for (ShockRow& row : ws.shock_rows) {
+    row.base_grips = ws.grips_still[static_cast<std::size_t>(row.base)] != 0;
   }
 }
 
@@ -662,6 +687,7 @@ void solveBodyConstraints(StepContext& ctx) {
   warmStart(ctx);
   for (int i = 0; i < ctx.body_settings->iterations; ++i) solvePass(ctx, true, i % 2 == 1);
   BodyWorkspace& ws = *ctx.body_ws;
+  gripBases(ws);
   propagateShock(ws.shock_rows, ws.constraints, ws.solver, contactPass(ctx, true, false));
   storeParticles(ctx, true);
 }

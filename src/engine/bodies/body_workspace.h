@@ -77,6 +77,9 @@ struct BodyWorkspace {
   std::vector<Vec3> carrier_center_of;
   std::vector<std::int32_t> base_of;   // per solver body: the lowest moving body of its pile
   std::vector<std::uint8_t> on_still;  // per solver body: it rests on something still
+  // (row, solver body): a contact through which a moving body rests on something still
+  std::vector<std::pair<std::uint32_t, std::int32_t>> still_supports;
+  std::vector<std::uint8_t> grips_still;  // per solver body: one of them holds it by friction
   std::vector<std::pair<Real, std::uint32_t>> contact_order;  // (height, contact) of the rows
   // The moving bodies' surfaces lent to the particles' positions stage
   // (ContactWorkspace::BodySurface::moves): the surface, its body's solver body, and as the step

@@ -797,8 +797,12 @@ void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstr
     upper.twist_impulse = c.twist_impulse;
     if (row.carrier == kNoBody) {
       if (!row.base_on_still) continue;
-      const bool slides = bodies[static_cast<std::size_t>(row.base)].v.squaredNorm() >
-                          pass.still_speed * pass.still_speed;
+      // Held in the ground's frame, the pile is braked by its friction: only while its base is
+      // slow and gripped by static friction, so coming to rest too. A base that slides, pushed
+      // along or gliding on frictionless ground, carries its pile on at any speed.
+      const bool slides =
+          !row.base_grips || bodies[static_cast<std::size_t>(row.base)].v.squaredNorm() >
+                                 pass.still_speed * pass.still_speed;
       Sides s(upper, bodies);
       solveShock(upper, s, pass, inverse_h, !slides);
       continue;

@@ -141,6 +141,7 @@ struct ShockRow {
   Vec3 lower_from_carrier = Vec3::Zero();  // the lower body's centre from the carrier's
   std::int32_t base = kNoBody;             // the lowest moving body under the row
   bool base_on_still = false;              // base rests on the ground, a fixed or sleeping body
+  bool base_grips = false;                 // one of those holds it by static friction
 };
 void propagateShock(std::vector<ShockRow>& rows, const std::vector<ContactConstraint>& constraints,
                     std::vector<SolverBody>& bodies, const ContactPass& pass);

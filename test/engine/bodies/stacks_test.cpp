@@ -256,6 +256,60 @@ TEST(Stacks, AColumnRidesASlidingCart) {
   EXPECT_LT(std::abs(bodies.position(top).x() - bodies.position(base).x()), 0.01);
 }
 
+// The shock pass holds a slow pile (below the sleep speed) in the ground's frame, friction
+// included, so that a pile coming to rest settles: only while its base is gripped by static
+// friction. Before, any slow base resting on something still was enough, and the box's friction
+// braked its cart.
+struct CartWithBox {
+  Structure s;
+  BodyId cart;
+  BodyId load;
+  CartWithBox(const Real ground_friction, const Real speed) {
+    keepAwake(s);
+    addGround(s.world, Material{0.0, ground_friction});
+    BodySpec cart_spec = body(box(Vec3(1.0, 0.5, 0.25)), 20.0, Vec3(0.0, 0.0, 0.25));
+    cart_spec.linear_velocity = Vec3(speed, 0.0, 0.0);
+    cart = *s.world.addBody(cart_spec);
+    BodySpec load_spec = body(box(Vec3::Constant(0.1)), 1.0, Vec3(0.0, 0.0, 0.6));
+    load_spec.linear_velocity = cart_spec.linear_velocity;
+    load = *s.world.addBody(load_spec);
+  }
+  Vec3 velocity(const BodyId id) const {
+    return s.world.bodies().linearVelocity(*s.world.bodies().find(id));
+  }
+  Real offset() const {
+    const BodyStore& bodies = s.world.bodies();
+    return bodies.position(*bodies.find(load)).x() - bodies.position(*bodies.find(cart)).x();
+  }
+};
+
+// Gliding at 4 cm/s on frictionless ground (sleeping off: a body that slow sleeps): by 2 s both
+// stood, the box 5.6 mm behind where it sat.
+TEST(Stacks, ABoxRidesASlowCartOnFrictionlessGround) {
+  CartWithBox scene(0.0, 0.04);
+  for (int step = 0; step < 120; ++step) scene.s.world.step();
+  EXPECT_NEAR(scene.velocity(scene.cart).x(), 0.04, 1e-4);
+  EXPECT_NEAR(scene.velocity(scene.load).x(), 0.04, 1e-4);
+  EXPECT_LT(std::abs(scene.offset()), 1e-4);
+}
+
+// Pushed from 4 cm/s along ground of friction 0.2 (0.316 with the cart's 0.5, their geometric
+// mean) by 0.33 (m_cart + m_box) g: a = (0.33 - 0.316) g, 0.31 m/s at 2 s. Before, the cart went
+// on at 3 cm/s and the box at 1, 4 cm behind by 2 s.
+TEST(Stacks, ABoxRidesACartPushedAlongTheGround) {
+  CartWithBox scene(0.2, 0.04);
+  const Real weight = 21.0 * 9.81;
+  for (int step = 0; step < 120; ++step) {
+    const Vec3 center = scene.s.world.bodies().position(*scene.s.world.bodies().find(scene.cart));
+    ASSERT_TRUE(scene.s.world.addBodyForce(scene.cart, Vec3(0.33 * weight, 0.0, 0.0), center));
+    scene.s.world.step();
+  }
+  const Real expected = 0.04 + (0.33 - std::sqrt(0.2 * 0.5)) * 9.81 * 2.0;
+  EXPECT_NEAR(scene.velocity(scene.cart).x(), expected, 0.01 * expected);
+  EXPECT_NEAR(scene.velocity(scene.load).x(), scene.velocity(scene.cart).x(), 1e-3);
+  EXPECT_LT(std::abs(scene.offset()), 1e-3);
+}
+
 // A box resting on another, both let go 2 m up, fall together. The shock pass held the upper one
 // still in the ground's frame through the first step (the contact then carried a guessed load):
 // it fell a step behind, 2.7 mm further above the lower box every step.
