@@ -372,6 +372,7 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
 void prepareShockRows(StepContext& ctx) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.shock_rows.clear();
+  ws.still_supports.clear();
   const Vec3 up = -ctx.config.gravity;
   if (!ctx.body_settings->shock_propagation || up.norm() == 0.0) return;
   const Vec3 up_unit = up.normalized();
@@ -379,7 +380,6 @@ void prepareShockRows(StepContext& ctx) {
   ws.carrier_center_of.assign(ws.solver.size(), Vec3::Zero());
   ws.base_of.assign(ws.solver.size(), kNoBody);
   ws.on_still.assign(ws.solver.size(), 0);
-  ws.still_supports.clear();
   for (std::uint32_t r = 0; r < ws.constraints.size(); ++r) {
     const ContactSides& sides = ws.constraint_sides[r];
     if ((sides.a == kNoBody) == (sides.b == kNoBody)) continue;
@@ -438,6 +438,7 @@ void prepareShockRows(StepContext& ctx) {
 // friction slides (at its bound, or none: frictionless ground) is driven or gliding, not coming
 // to rest, so its pile is not held in the ground's frame by friction (propagateShock).
 void gripBases(BodyWorkspace& ws) {
+  if (ws.shock_rows.empty()) return;
   ws.grips_still.assign(ws.solver.size(), 0);
   for (const auto& [r, above] : ws.still_supports) {
     const ContactConstraint& c = ws.constraints[r];
