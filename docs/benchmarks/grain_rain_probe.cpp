@@ -4,8 +4,9 @@
 // seconds). Prints the median and p90 over the last 3 s of the grains' kinetic energy, how many
 // grains moved more than 1 cm over those 3 s and how far all of them moved, the cost of a step
 // (all, the first 3 s, the last 3 s), the grains' and boxes' kinetic energy at the end, how many
-// grains touch a box, the deepest grain-box overlap over the last 3 s (worst and mean) and how
-// far the top box moved. Build and run from the repository root after scripts/bench.sh has built
+// grains touch a box, the deepest grain-box overlap over the last 3 s (worst and mean), how far
+// the top box moved, and where the grains ended (by height, and over the pyramid's footprint).
+// Build and run from the repository root after scripts/bench.sh has built
 // the engine:
 //   g++ -std=c++17 -O2 -I include -I /usr/include/eigen3 \
 //     docs/benchmarks/grain_rain_probe.cpp -o /tmp/grain_rain_probe \
@@ -23,6 +24,7 @@
 // made where the pair starts).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -179,4 +181,17 @@ int main(int argc, char** argv) {
       "boxes %d  late deepest grain-box %.2f mm mean %.3f mm  top moved %.2f mm\n",
       1e3 * secs / steps, 1e3 * early / 360, 1e3 * last / late, grain_ke, box_ke, on_boxes,
       1e3 * late_deep, 1e3 * late_mean, 1e3 * top_moved);
+  // Where the grains ended: by height (the pyramid's rows of 0.5 m boxes), and over its footprint.
+  const auto xx = world.particles().positions();
+  int band[5] = {0, 0, 0, 0, 0};
+  int over = 0;
+  for (Eigen::Index i = 0; i < xx.cols(); ++i) {
+    const double z = xx(2, i);
+    ++band[z < 0.3 ? 0 : z < 0.8 ? 1 : z < 1.3 ? 2 : z < 1.8 ? 3 : 4];
+    over += std::abs(xx(0, i)) < 0.76 && std::abs(xx(1, i)) < 0.3;
+  }
+  std::printf(
+      "grains at z < 0.3 m %d, 0.3-0.8 %d, 0.8-1.3 %d, 1.3-1.8 %d, above %d; over the "
+      "pyramid's footprint %d\n",
+      band[0], band[1], band[2], band[3], band[4], over);
 }

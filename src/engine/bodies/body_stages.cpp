@@ -8,6 +8,7 @@
 #include "engine/bodies/body_motion.h"
 #include "engine/bodies/contact_solver.h"
 #include "engine/bodies/islands.h"
+#include "engine/bodies/particle_pair.h"
 #include "engine/collision/narrowphase/any_shape.h"
 #include "engine/core/prefetch.h"
 #include "engine/forces/body_force_stage.h"
@@ -210,9 +211,8 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
   BodyWorkspace& ws = *ctx.body_ws;
   ws.link_joints.clear();
   ws.link_rows.clear();
-  ws.pair_joints.clear();
-  ws.pair_rows.clear();
-  ws.pair_keys.clear();
+  ws.particle_pairs.clear();
+  ws.pair_by_key.clear();
   if (ws.particle_of_solver.empty()) return;
   // This substep's particle contacts, when the contact stage made any between particles.
   const bool pairs =
@@ -279,20 +279,32 @@ void coupleParticles(StepContext& ctx, const Softness& link_softness) {
   });
   if (!pairs) return;
   const auto radius = particles.radii();
+  const auto velocity = particles.velocities();
+  const Real lead = particleLead(ctx);
+  const ContactResolver& resolver = ctx.contacts.resolver;
+  const Real substep_ratio = resolver.lastSubstep() > 0.0 ? ctx.h / resolver.lastSubstep() : 1.0;
   for (const Contact& c : ctx.contacts.contacts) {
     if (!particlePair(c) || !joinedAt(c.a) || !joinedAt(c.b)) continue;
-    DistanceJoint joint = DistanceJoint::pushOnly(JointEnd::atParticle(particles.idAt(c.a)),
-                                                  JointEnd::atParticle(particles.idAt(c.b)),
-                                                  radius[c.a] + radius[c.b]);
+    ParticlePair& pair = ws.particle_pairs.emplace_back();
+    pair.a = ws.solver_of_particle[c.a];
+    pair.b = ws.solver_of_particle[c.b];
+    pair.start_a = position.col(c.a) - lead * velocity.col(c.a);
+    pair.start_b = position.col(c.b) - lead * velocity.col(c.b);
+    pair.touching = radius[c.a] + radius[c.b];
+    pair.friction = c.friction;
+    pair.key = c.key;
     if (const KeptImpulses::Entry* kept = ws.pair_impulses.find(c.key)) {
-      joint.lower_impulse = kept->lower;
+      pair.normal_impulse = kept->lower;
+      pair.friction_impulse = kept->friction;
+    } else if (resolver.lastImpulses(c.key, pair.normal_impulse, pair.friction_impulse)) {
+      // The particle solver's until now (the body under the pile just woke): its impulses, over
+      // its last substep, as impulses over this one.
+      pair.normal_impulse *= substep_ratio;
+      pair.friction_impulse *= substep_ratio;
     }
-    // Rigid: a pair row only keeps the two from closing; the particle solver's positions stage
-    // takes out their overlap (a soft row's bias would push them apart with real velocity, and
-    // a resting column would bounce). Both ends are joined, so the row is always made.
-    addRow(joint, Softness{}, ws.pair_joints, ws.pair_rows);
-    ws.pair_keys.push_back(c.key);
+    ws.pair_by_key.emplace_back(c.key, static_cast<std::uint32_t>(ws.particle_pairs.size() - 1));
   }
+  std::sort(ws.pair_by_key.begin(), ws.pair_by_key.end());
 }
 
 void prepareJoints(StepContext& ctx) {
@@ -334,9 +346,6 @@ void forEachJointRow(StepContext& ctx, F&& f) {
   for (const JointRow& row : ctx.body_ws->link_rows) {
     f(KindTag<DistanceJoint>{}, ctx.body_ws->link_joints[row.joint], row);
   }
-  for (const JointRow& row : ctx.body_ws->pair_rows) {
-    f(KindTag<DistanceJoint>{}, ctx.body_ws->pair_joints[row.joint], row);
-  }
 }
 
 ContactPass contactPass(const StepContext& ctx, const bool use_bias, const bool top_down) {
@@ -350,6 +359,7 @@ void warmStart(StepContext& ctx) {
   forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
     JointKind<typename decltype(tag)::type>::warmStart(joint, row, ws.solver);
   });
+  warmStartParticlePairs(ws.particle_pairs, ws.solver);
   warmStartContacts(ws.constraints, ws.solver, contactPass(ctx, true, false));
 }
 
@@ -359,6 +369,7 @@ void solvePass(StepContext& ctx, const bool use_bias, const bool top_down) {
   forEachJointRow(ctx, [&](auto tag, auto& joint, const JointRow& row) {
     JointKind<typename decltype(tag)::type>::solve(joint, row, pass);
   });
+  solveParticlePairs(ws.particle_pairs, ws.solver, ctx.h);
   solveContacts(ws.constraints, ws.solver, contactPass(ctx, use_bias, top_down));
 }
 
@@ -573,8 +584,77 @@ void findBodyPairs(StepContext& ctx) {
   placeMovingSurfaces(ctx);
 }
 
-void generateBodyContacts(StepContext& ctx) {
-  if (!ctx.bodies || ctx.substep != 0) return;
+namespace {
+
+// The particle contacts the body solver has pair rows for (coupleParticles), found among this
+// substep's, in a pile that rests on moving bodies alone: their velocities are that solver's
+// (two solvers on one pile undid each other's lateral pushes, and the particle solver ran all its
+// passes every substep). A pile that also rests on something else (a collider, a still body, a
+// particle the body solver does not move) stays in both: split between them along its contacts,
+// the part on the ground slid for seconds.
+void leavePairsToBodySolver(StepContext& ctx) {
+  BodyWorkspace& ws = *ctx.body_ws;
+  if (!ws.prepared || ws.particle_pairs.empty()) return;
+  for (ParticlePair& pair : ws.particle_pairs) pair.alone = false;
+  std::vector<Contact>& contacts = ctx.contacts.contacts;
+  const std::size_t count = ws.particle_of_solver.size();
+  const auto joined = [&](const std::uint32_t p) {
+    const std::int32_t k = p < ws.solver_of_particle.size() ? ws.solver_of_particle[p] : kNoBody;
+    return k == kNoBody ? count : static_cast<std::size_t>(k) - ws.first_particle;
+  };
+  // Union-find over the joined particles' contacts: the piles, and whether each rests elsewhere.
+  std::vector<std::uint32_t>& parent = ws.pile_of;
+  std::vector<std::uint8_t>& elsewhere = ws.pile_rests_elsewhere;
+  parent.resize(count);
+  for (std::uint32_t k = 0; k < count; ++k) parent[k] = k;
+  elsewhere.assign(count, 0);
+  const auto root = [&](std::uint32_t k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  for (const Contact& c : contacts) {
+    if (c.kind != ContactKind::kContact || c.position_only) continue;
+    const std::size_t a = joined(c.a);
+    const std::size_t b = c.b == kNoParticle ? count : joined(c.b);
+    if (a == count && b == count) continue;
+    if (c.b != kNoParticle && a != count && b != count) {
+      const std::uint32_t ra = root(static_cast<std::uint32_t>(a));
+      const std::uint32_t rb = root(static_cast<std::uint32_t>(b));
+      parent[std::max(ra, rb)] = std::min(ra, rb);
+      continue;
+    }
+    elsewhere[a != count ? a : b] = 1;
+  }
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (elsewhere[k]) elsewhere[root(k)] = 1;
+  }
+  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+    Contact& c = contacts[i];
+    if (!particlePair(c)) continue;
+    const auto it = std::lower_bound(ws.pair_by_key.begin(), ws.pair_by_key.end(),
+                                     std::pair<std::uint64_t, std::uint32_t>{c.key, 0});
+    if (it == ws.pair_by_key.end() || it->first != c.key) continue;
+    if (elsewhere[root(static_cast<std::uint32_t>(joined(c.a)))]) continue;
+    c.body_solved = true;
+    ParticlePair& pair = ws.particle_pairs[it->second];
+    pair.alone = true;
+    pair.contact = i;
+  }
+}
+
+// What the pair rows ended the substep with, kept as the particle solver keeps its own contacts'
+// impulses: it warm starts from them when it takes the contacts back (the body under the pile
+// asleep, its grains no longer the body solver's).
+void handBackPairImpulses(StepContext& ctx) {
+  ContactResolver& resolver = ctx.contacts.resolver;
+  for (const ParticlePair& pair : ctx.body_ws->particle_pairs) {
+    if (!pair.alone) continue;
+    resolver.keepImpulses(pair.contact, pair.key, pair.normal_impulse, pair.friction_impulse);
+  }
+}
+
+// The step's body rows, made in its first substep.
+void generateStepBodyContacts(StepContext& ctx) {
   BodyStore& bodies = *ctx.bodies;
   BodyWorkspace& ws = *ctx.body_ws;
   const BodySettings& settings = *ctx.body_settings;
@@ -585,9 +665,8 @@ void generateBodyContacts(StepContext& ctx) {
     ws.shock_rows.clear();
     ws.link_joints.clear();
     ws.link_rows.clear();
-    ws.pair_joints.clear();
-    ws.pair_rows.clear();
-    ws.pair_keys.clear();
+    ws.particle_pairs.clear();
+    ws.pair_by_key.clear();
     for (std::vector<JointRow>& rows : ws.joints.of_kind) rows.clear();
     ws.prepared = false;
     return;
@@ -682,6 +761,18 @@ void generateBodyContacts(StepContext& ctx) {
   ws.prepared = !ws.solver.empty();
 }
 
+}  // namespace
+
+void generateBodyContacts(StepContext& ctx) {
+  if (!ctx.bodies) return;
+  if (ctx.substep != 0) {
+    leavePairsToBodySolver(ctx);
+    return;
+  }
+  generateStepBodyContacts(ctx);
+  leavePairsToBodySolver(ctx);
+}
+
 void solveBodyConstraints(StepContext& ctx) {
   if (!ctx.bodies || !ctx.body_ws->prepared) return;
   loadParticles(ctx, true);
@@ -708,11 +799,16 @@ void integrateBodyPositions(StepContext& ctx) {
     sb.pw.setZero();
     sb.flew = false;
   }
-  if (!ws.prepared || ctx.body_settings->relax_iterations == 0) return;
-  loadParticles(ctx, false);
-  takeSeparations(ws.constraints, ws.solver);
-  for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) solvePass(ctx, false, i % 2 == 1);
-  storeParticles(ctx, false);
+  if (!ws.prepared) return;
+  if (ctx.body_settings->relax_iterations > 0) {
+    loadParticles(ctx, false);
+    takeSeparations(ws.constraints, ws.solver);
+    for (int i = 0; i < ctx.body_settings->relax_iterations; ++i) {
+      solvePass(ctx, false, i % 2 == 1);
+    }
+    storeParticles(ctx, false);
+  }
+  handBackPairImpulses(ctx);
 }
 
 void finaliseBodies(StepContext& ctx) {
@@ -726,8 +822,8 @@ void finaliseBodies(StepContext& ctx) {
   }
   ws.link_impulses.sortByKey();
   ws.pair_impulses.clear();
-  for (std::size_t k = 0; k < ws.pair_joints.size(); ++k) {
-    ws.pair_impulses.add(ws.pair_keys[k], ws.pair_joints[k].lower_impulse);
+  for (const ParticlePair& pair : ws.particle_pairs) {
+    ws.pair_impulses.add(pair.key, pair.normal_impulse, 0.0, pair.friction_impulse);
   }
   ws.pair_impulses.sortByKey();
   for (std::size_t i = 0; i < bodies.size(); ++i) {

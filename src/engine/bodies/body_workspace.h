@@ -12,6 +12,7 @@
 #include "engine/bodies/joint_rows.h"
 #include "engine/bodies/kept_impulses.h"
 #include "engine/bodies/kept_mass_pool.h"
+#include "engine/bodies/particle_pair.h"
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
 #include "engine/collision/dynamic_tree.h"
@@ -100,17 +101,17 @@ struct BodyWorkspace {
   std::vector<JointRow> link_rows;
   KeptImpulses link_impulses;  // by link id
   // The contacts between those particles and the particles resting on them (closed upwards):
-  // push-only distance rows beside the links. The particle solver, which runs first, sees a
-  // particle resting on a body as free: a particle on top and the one under it fall together
-  // there and their row carries nothing, so without these rows the upper one's weight would reach
-  // the body only through the positions stage, which pushes the lower one into it. The particle
-  // solver solves these contacts too. Each row's impulse, by its contact's key, warm starts the
+  // their rows (particle_pair.h), with friction where the pile rests on moving bodies alone (the
+  // particle solver then leaves them to this one). Their impulses, by contact key, warm start the
   // next step (state, as the links').
-  std::vector<DistanceJoint> pair_joints;
-  std::vector<JointRow> pair_rows;
-  std::vector<std::uint64_t> pair_keys;  // each pair row's particle contact key
-  KeptImpulses pair_impulses;            // by contact key; lower only
-  std::vector<Real> heights;             // per solver body, along -gravity
+  std::vector<ParticlePair> particle_pairs;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> pair_by_key;  // (key, pair), sorted
+  // Per particle the body solver moves: its pile (a union-find root) and whether the pile rests
+  // on anything but moving bodies (leavePairsToBodySolver).
+  std::vector<std::uint32_t> pile_of;
+  std::vector<std::uint8_t> pile_rests_elsewhere;
+  KeptImpulses pair_impulses;  // by contact key: the normal impulse (lower) and the friction
+  std::vector<Real> heights;   // per solver body, along -gravity
   RestingLoadBuffers resting_loads;
   // The force generators on bodies, this substep: per moving body (by solver body; empty without
   // generators) their force and torque about the centre of mass; the particles' external forces,

@@ -19,11 +19,13 @@ class KeptImpulses {
     std::uint64_t key = 0;
     Real lower = 0.0;
     Real upper = 0.0;
+    Vec3 friction = Vec3::Zero();  // a particle pair's
   };
 
   void clear() { entries_.clear(); }
-  void add(const std::uint64_t key, const Real lower, const Real upper = 0.0) {
-    entries_.push_back(Entry{key, lower, upper});
+  void add(const std::uint64_t key, const Real lower, const Real upper = 0.0,
+           const Vec3& friction = Vec3::Zero()) {
+    entries_.push_back(Entry{key, lower, upper, friction});
   }
   // After the adds, so that find() can search (the keys are unique).
   void sortByKey() {

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "engine/core/state_hash.h"
 #include "engine/joints/end_frames.h"
@@ -65,9 +64,7 @@ void JointKind<DistanceJoint>::solve(DistanceJoint& joint, const JointRow& row,
     total = updated;
   };
   if (joint.min_length > 0.0) bound(length - joint.min_length, 1.0, joint.lower_impulse);
-  if (joint.max_length < std::numeric_limits<Real>::infinity()) {
-    bound(joint.max_length - length, -1.0, joint.upper_impulse);
-  }
+  bound(joint.max_length - length, -1.0, joint.upper_impulse);
 }
 
 JointReaction JointKind<DistanceJoint>::reaction(const DistanceJoint& joint, const Real h) {

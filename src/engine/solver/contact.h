@@ -29,6 +29,9 @@ struct Contact {
   // statistics; the position passes push the particle back out if other contacts' corrections
   // move it into the collider within the substep.
   bool position_only = false;
+  // Two particles the body solver moves, resting on a body: that solver takes the contact's
+  // velocities (normal and friction); the positions stage here still takes out its overlap.
+  bool body_solved = false;
   std::uint32_t link = 0;  // links: index of their LinkGeometry
   Vec3 normal = Vec3::UnitZ();
   // How far a must move along normal (relative to b) to satisfy the constraint; links recompute it

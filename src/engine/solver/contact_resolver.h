@@ -131,6 +131,11 @@ class ContactResolver {
   // last substep with; false when it was not among that substep's contacts.
   bool lastImpulses(std::uint64_t key, Real& normal, Vec3& friction) const;
   Real lastSubstep() const { return last_substep_; }
+  // Replaces the impulses kept for warm starting from contact `index` of the last substep, named
+  // `key` (nothing when it is not that contact): a contact whose velocities another solver took
+  // (Contact::body_solved) hands over what that solver ended with, so that this one starts from
+  // it when the contact is its own again.
+  void keepImpulses(std::size_t index, std::uint64_t key, Real normal, const Vec3& friction);
   // Adds the impulses kept for warm starting the next substep (part of the world's state).
   void addToHash(StateHasher& hasher) const {
     for (std::size_t k = 0; k < warm_key_.size(); ++k) {

@@ -460,6 +460,7 @@ std::uint64_t World::stateHash() const {
     for (const KeptImpulses::Entry& pair : body_ws_->pair_impulses.entries()) {
       hasher.add(pair.key);
       hasher.add(pair.lower);
+      hasher.add(pair.friction);
     }
   }
   return hasher.value();

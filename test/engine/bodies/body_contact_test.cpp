@@ -981,6 +981,45 @@ TEST(BodyContact, AKinematicBoxLiftsAColumnOfGrains) {
   EXPECT_NEAR(gapOverBox(world, id), 0.0, 1e-3);
 }
 
+// A column of two grains rides a box pushed along frictionless ground at 1 m/s^2: the upper
+// grain is carried by its friction on the lower one, which the body solver has alone (the pile
+// rests on the moving box only). With that contact a push-only body row and the particle
+// solver's friction (before session 31), the upper grain was left behind and fell onto the box
+// (23 cm apart).
+TEST(BodyContact, AColumnOfGrainsRidesABoxPushedAlongOnItsFriction) {
+  World world(config());
+  addGround(world, Material{0.0, 0.0});
+  CollisionSettings collisions;
+  collisions.particle_collisions = true;
+  collisions.particle_friction = 0.3;
+  ASSERT_TRUE(world.setCollisionSettings(collisions).isOk());
+  BodySettings settings;
+  settings.sleep = false;
+  ASSERT_TRUE(world.setBodySettings(settings).isOk());
+  const BodyId cart = *world.addBody(body(box(Vec3::Constant(0.25)), 20.0, Vec3(0.0, 0.0, 0.25)));
+  addGrain(world, Vec3(0.0, 0.0, 0.5 + kGrainRadius));
+  addGrain(world, Vec3(0.0, 0.0, 0.5 + 3.0 * kGrainRadius));
+  for (int step = 0; step < 30; ++step) world.step();
+  const std::size_t b = *world.bodies().find(cart);
+  const Real acceleration = 1.0;
+  Real widest = 0.0;
+  for (int step = 0; step < 60; ++step) {
+    ASSERT_TRUE(world
+                    .addBodyForce(cart, Vec3((20.0 + 0.1) * acceleration, 0.0, 0.0),
+                                  world.bodies().position(b))
+                    .isOk());
+    world.step();
+    const auto x = world.particles().positions();
+    widest = std::max(
+        {widest, std::abs(x(0, 1) - x(0, 0)), std::abs(x(0, 0) - world.bodies().position(b).x())});
+  }
+  const Real v = world.bodies().linearVelocity(b).x();
+  EXPECT_NEAR(v, acceleration * 1.0, 0.02);
+  EXPECT_LT(widest, 1e-3);
+  EXPECT_NEAR(world.particles().velocities()(0, 1), v, 1e-3);
+  EXPECT_GT(world.particles().positions()(2, 1), 0.5 + 3.0 * kGrainRadius - 1e-3);
+}
+
 // A grain on an awake box is the body rows' (the positions stage only keeps it out of the box's
 // surface): the report gives the body rows' impulse, its weight over a substep, and not the
 // positions stage's none.

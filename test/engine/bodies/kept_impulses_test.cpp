@@ -13,7 +13,7 @@ namespace {
 TEST(KeptImpulses, EachKeyFindsItsOwnImpulsesAfterTheSort) {
   KeptImpulses kept;
   kept.add(42, 1.5, -2.0);
-  kept.add(7, 0.25);
+  kept.add(7, 0.25, 0.0, Vec3(0.5, -0.5, 0.0));
   kept.add(std::uint64_t{3} << 62, 9.0, 1.0);
   kept.sortByKey();
   ASSERT_EQ(kept.entries().size(), 3u);
@@ -26,6 +26,8 @@ TEST(KeptImpulses, EachKeyFindsItsOwnImpulsesAfterTheSort) {
   ASSERT_NE(pair, nullptr);
   EXPECT_EQ(pair->lower, 0.25);
   EXPECT_EQ(pair->upper, 0.0);
+  EXPECT_EQ(pair->friction, Vec3(0.5, -0.5, 0.0));
+  EXPECT_EQ(link->friction, Vec3::Zero());
   ASSERT_NE(kept.find(std::uint64_t{3} << 62), nullptr);
   EXPECT_EQ(kept.find(8), nullptr);
   EXPECT_EQ(kept.find(43), nullptr);

@@ -1,7 +1,5 @@
 #pragma once
 
-#include <limits>
-
 #include "mass_aggregate_sim/engine/joints/joint_kind.h"
 
 namespace mass_aggregate_sim {
@@ -9,8 +7,7 @@ namespace engine {
 
 // Keeps the distance between anchor a and anchor b within [min_length, max_length]: a rod when
 // they are equal, a cable (pulls only) with min_length 0. The particles' cable and rod, with ends
-// on bodies. A negative length is the distance when added. An infinite max_length pushes only:
-// the body solver's row for two particles in contact (pushOnly); validate() refuses it.
+// on bodies. A negative length is the distance when added.
 struct DistanceJoint {
   JointEnd a;
   JointEnd b;
@@ -36,14 +33,6 @@ struct DistanceJoint {
     j.b = b;
     j.min_length = 0.0;
     j.max_length = length;
-    return j;
-  }
-  static DistanceJoint pushOnly(const JointEnd& a, const JointEnd& b, const Real length) {
-    DistanceJoint j;
-    j.a = a;
-    j.b = b;
-    j.min_length = length;
-    j.max_length = std::numeric_limits<Real>::infinity();
     return j;
   }
 };
