@@ -29,8 +29,9 @@ struct Contact {
   // statistics; the position passes push the particle back out if other contacts' corrections
   // move it into the collider within the substep.
   bool position_only = false;
-  // Two particles the body solver moves, resting on a body: that solver takes the contact's
-  // velocities (normal and friction); the positions stage here still takes out its overlap.
+  // Two particles of a pile that rests on moving bodies alone: the body solver takes the
+  // contact's velocities (normal and friction); the positions stage here still takes out its
+  // overlap (bodies/particle_pair.h).
   bool body_solved = false;
   std::uint32_t link = 0;  // links: index of their LinkGeometry
   Vec3 normal = Vec3::UnitZ();
