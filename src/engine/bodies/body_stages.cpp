@@ -602,31 +602,24 @@ void leavePairsToBodySolver(StepContext& ctx) {
     const std::int32_t k = p < ws.solver_of_particle.size() ? ws.solver_of_particle[p] : kNoBody;
     return k == kNoBody ? count : static_cast<std::size_t>(k) - ws.first_particle;
   };
-  // Union-find over the joined particles' contacts: the piles, and whether each rests elsewhere.
-  std::vector<std::uint32_t>& parent = ws.pile_of;
+  // The piles, and whether each rests elsewhere.
+  UnionFind& piles = ws.piles;
   std::vector<std::uint8_t>& elsewhere = ws.pile_rests_elsewhere;
-  parent.resize(count);
-  for (std::uint32_t k = 0; k < count; ++k) parent[k] = k;
+  piles.reset(count);
   elsewhere.assign(count, 0);
-  const auto root = [&](std::uint32_t k) {
-    while (parent[k] != k) k = parent[k] = parent[parent[k]];
-    return k;
-  };
   for (const Contact& c : contacts) {
     if (c.kind != ContactKind::kContact || c.position_only) continue;
     const std::size_t a = joined(c.a);
     const std::size_t b = c.b == kNoParticle ? count : joined(c.b);
     if (a == count && b == count) continue;
     if (c.b != kNoParticle && a != count && b != count) {
-      const std::uint32_t ra = root(static_cast<std::uint32_t>(a));
-      const std::uint32_t rb = root(static_cast<std::uint32_t>(b));
-      parent[std::max(ra, rb)] = std::min(ra, rb);
+      piles.join(a, b);
       continue;
     }
     elsewhere[a != count ? a : b] = 1;
   }
-  for (std::uint32_t k = 0; k < count; ++k) {
-    if (elsewhere[k]) elsewhere[root(k)] = 1;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (elsewhere[k]) elsewhere[piles.find(k)] = 1;
   }
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     Contact& c = contacts[i];
@@ -634,7 +627,7 @@ void leavePairsToBodySolver(StepContext& ctx) {
     const auto it = std::lower_bound(ws.pair_by_key.begin(), ws.pair_by_key.end(),
                                      std::pair<std::uint64_t, std::uint32_t>{c.key, 0});
     if (it == ws.pair_by_key.end() || it->first != c.key) continue;
-    if (elsewhere[root(static_cast<std::uint32_t>(joined(c.a)))]) continue;
+    if (elsewhere[piles.find(joined(c.a))]) continue;
     c.body_solved = true;
     ParticlePair& pair = ws.particle_pairs[it->second];
     pair.alone = true;

@@ -16,6 +16,7 @@
 #include "engine/bodies/solver_body.h"
 #include "engine/collision/body_pairs.h"
 #include "engine/collision/dynamic_tree.h"
+#include "engine/core/union_find.h"
 #include "mass_aggregate_sim/engine/joints/distance_joint.h"
 
 namespace mass_aggregate_sim {
@@ -106,9 +107,10 @@ struct BodyWorkspace {
   // next step (state, as the links').
   std::vector<ParticlePair> particle_pairs;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> pair_by_key;  // (key, pair), sorted
-  // Per particle the body solver moves: its pile (a union-find root) and whether the pile rests
-  // on anything but moving bodies (leavePairsToBodySolver).
-  std::vector<std::uint32_t> pile_of;
+  // The particles the body solver moves (by solver body less first_particle) joined into piles
+  // by their contacts, and per pile root whether it rests on anything but moving bodies
+  // (leavePairsToBodySolver).
+  UnionFind piles;
   std::vector<std::uint8_t> pile_rests_elsewhere;
   KeptImpulses pair_impulses;  // by contact key: the normal impulse (lower) and the friction
   std::vector<Real> heights;   // per solver body, along -gravity

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
+#include <limits>
 #include <vector>
+
+#include "engine/core/union_find.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
@@ -47,28 +49,6 @@ void forEachAwakeLink(const BodyStore& bodies, const BodyWorkspace& ws, const Jo
   for (const std::uint32_t c : ws.awake_contacts) contactLink(bodies, ws.contacts[c], f);
   jointLinks(bodies, joints, f);
 }
-
-class UnionFind {
- public:
-  explicit UnionFind(const std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
-  }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) {
-      parent_[i] = parent_[parent_[i]];
-      i = parent_[i];
-    }
-    return i;
-  }
-  void join(const std::size_t a, const std::size_t b) {
-    const std::size_t ra = find(a);
-    const std::size_t rb = find(b);
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 // Fixed and kinematic bodies do not carry an island across them.
 bool joins(const BodyStore& bodies, const std::size_t i) { return bodies.dynamic(i); }
