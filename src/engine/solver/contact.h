@@ -43,6 +43,10 @@ struct Contact {
   // Names the same contact in the next substep, so it can start from this one's impulse:
   // contactKey() of its particles' slots, collider or link.
   std::uint64_t key = 0;
+
+  // Whether the particle solver's velocity phase takes it (impulses, friction), not only its
+  // positions stage.
+  bool solvesVelocities() const { return !position_only && !body_solved; }
 };
 
 // What a link constraint needs beyond its Contact.

@@ -414,7 +414,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
     const std::ptrdiff_t found = cursor < warm_key_.size() && warm_key_[cursor] == c.key
                                      ? static_cast<std::ptrdiff_t>(cursor++)
                                      : findWarm(c.key, cursor);
-    if (find_isolated && c.kind == ContactKind::kContact && !c.position_only && !c.body_solved &&
+    if (find_isolated && c.kind == ContactKind::kContact && c.solvesVelocities() &&
         (all_isolated || (!isShared(c.a) && !(b && isShared(c.b))))) {
       ++isolated_count_;
       const bool warm_friction = found >= 0 && !warm_friction_.empty();
@@ -486,10 +486,10 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
     // it then keeps them from closing faster than the gap allows, so a resting contact or a loaded
     // cable that flickers open does not fall free for a substep and come back with a jolt. A fast
     // approach is let through, to bounce properly in the next substep.
-    const bool active = w_sum > 0.0 && !c.position_only && !c.body_solved &&
+    const bool active = w_sum > 0.0 && c.solvesVelocities() &&
                         !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting);
     const bool friction =
-        c.kind == ContactKind::kContact && c.friction > 0.0 && !c.position_only && !c.body_solved;
+        c.kind == ContactKind::kContact && c.friction > 0.0 && c.solvesVelocities();
     row.flags = static_cast<std::uint8_t>(
         (b ? Row::kHasB : 0) | (active ? Row::kActive : 0) | (resting ? Row::kResting : 0) |
         (friction ? Row::kFriction : 0) | (c.kind != ContactKind::kRod ? Row::kUnilateral : 0) |
