@@ -777,10 +777,10 @@ TEST(BodyContact, AFastParticleMeetsABallItFallsOntoAlongTheTouchNormal) {
   EXPECT_LT((v - Vec3(5.5, 0.0, -5.5)).norm(), 0.1);
 }
 
-// The ground, with particle collisions on (friction 0.3): a world for grains.
-World groundForGrains() {
+// The ground (of `ground`), with particle collisions on (friction 0.3): a world for grains.
+World groundForGrains(const Material& ground = Material{0.0, 0.5}) {
   World world(config());
-  addGround(world);
+  addGround(world, ground);
   CollisionSettings collisions;
   collisions.particle_collisions = true;
   collisions.particle_friction = 0.3;
@@ -987,12 +987,7 @@ TEST(BodyContact, AKinematicBoxLiftsAColumnOfGrains) {
 // solver's friction (before session 31), the upper grain was left behind and fell onto the box
 // (23 cm apart).
 TEST(BodyContact, AColumnOfGrainsRidesABoxPushedAlongOnItsFriction) {
-  World world(config());
-  addGround(world, Material{0.0, 0.0});
-  CollisionSettings collisions;
-  collisions.particle_collisions = true;
-  collisions.particle_friction = 0.3;
-  ASSERT_TRUE(world.setCollisionSettings(collisions).isOk());
+  World world = groundForGrains(Material{0.0, 0.0});
   BodySettings settings;
   settings.sleep = false;
   ASSERT_TRUE(world.setBodySettings(settings).isOk());
