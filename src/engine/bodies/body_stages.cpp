@@ -411,9 +411,7 @@ void prepareShockRows(StepContext& ctx) {
     if (c.a == kNoBody || c.b == kNoBody) continue;
     const Real vertical = c.normal.dot(up_unit);
     if (std::abs(vertical) < std::sqrt(0.5)) continue;
-    Real load = 0.0;
-    for (int k = 0; k < c.count; ++k) load += c.points[k].normal_impulse;
-    if (load <= 0.0) continue;
+    if (c.normalLoad() <= 0.0) continue;
     // n points from a to b: b rests on a when n points up.
     const ContactSides& sides = ws.constraint_sides[r];
     const auto lower = static_cast<std::size_t>(vertical > 0.0 ? sides.a : sides.b);
@@ -453,8 +451,7 @@ void gripBases(BodyWorkspace& ws) {
   ws.grips_still.assign(ws.solver.size(), 0);
   for (const auto& [r, above] : ws.still_supports) {
     const ContactConstraint& c = ws.constraints[r];
-    Real load = 0.0;
-    for (int k = 0; k < c.count; ++k) load += c.points[k].normal_impulse;
+    const Real load = c.normalLoad();
     // The passes clamp friction to mu times the load they saw; a hair inside that is sliding.
     const Real friction = std::hypot(c.friction_impulse[0], c.friction_impulse[1]);
     if (load > 0.0 && friction < 0.999 * c.friction * load) {

@@ -77,6 +77,13 @@ struct ContactConstraint {
   Real twist_mass = 0.0;
   Real friction_impulse[2] = {0.0, 0.0};
   Real twist_impulse = 0.0;
+
+  // The load it carries: sum_k j_k over its points.
+  Real normalLoad() const {
+    Real load = 0.0;
+    for (int k = 0; k < count; ++k) load += points[k].normal_impulse;
+    return load;
+  }
 };
 
 }  // namespace engine

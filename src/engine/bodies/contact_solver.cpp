@@ -740,15 +740,13 @@ void guessRestingLoads(std::vector<ContactConstraint>& constraints,
       const RestingLoadBuffers::Support& support = supports[j];
       ContactConstraint& c = constraints[support.constraint];
       const Real share = !lever ? even : j == begin ? total * (1.0 - *lever) : total * *lever;
-      Real carried = 0.0;
-      if (guessed(c)) {
+      const bool guess = guessed(c);
+      if (guess) {
         for (int p = 0; p < c.count; ++p) {
           c.points[p].normal_impulse = share / static_cast<Real>(c.count);
         }
-        carried = share;
-      } else {
-        for (int p = 0; p < c.count; ++p) carried += c.points[p].normal_impulse;
       }
+      const Real carried = guess ? share : c.normalLoad();
       if (support.below == kNoBody) continue;
       const auto below = static_cast<std::size_t>(support.below);
       load[below] += carried;
