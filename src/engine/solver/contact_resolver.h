@@ -246,6 +246,10 @@ class ContactResolver {
   std::vector<std::uint32_t> initial_stamp_;  // per particle: == stamp_ when kept this substep
   // Per particle: == stamp_ when one of its active rows is not a resting contact.
   std::vector<std::uint32_t> mixed_stamp_;
+  // Per particle, marked by followRestingImpulses when some particle is mixed: == stamp_ when it
+  // rests on an active contact that pushes, and when it is in an active link's row.
+  std::vector<std::uint32_t> rests_stamp_;
+  std::vector<std::uint32_t> linked_stamp_;
   std::uint32_t stamp_ = 0;
   bool any_mixed_ = false;
   // The isolated contacts' share of the stats (their particles are in touched_ without a

@@ -23,7 +23,7 @@ namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr std::uint64_t kGoldenHash = 0x535f5152fd8dd7fcull;
+constexpr std::uint64_t kGoldenHash = 0xbf63a3472c00d5f8ull;
 constexpr int kGoldenSteps = 600;
 
 // A hanging spring chain, a falling 3 x 3 x 2 block of grains and a ground plane: springs,
