@@ -112,6 +112,42 @@ TEST(Pile, AGrainStruckFromAboveStaysOnTheGround) {
   }
 }
 
+// The same through a column of three grains: each stays where it rested (the top one rose 2.5
+// cm at restitution 0 and 5.6 cm at 0.8, the middle one 0.7 cm).
+TEST(Pile, AColumnStruckFromAboveStaysInPlace) {
+  for (const Real restitution : {0.0, 0.8}) {
+    WorldConfig config;
+    config.gravity = Vec3(0.0, 0.0, -9.81);
+    World world(config);
+    CollisionSettings settings;
+    settings.particle_collisions = true;
+    settings.particle_restitution = restitution;
+    ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
+    ASSERT_TRUE(world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, Material{0.0, 0.5}}).isOk());
+    const Real radius = 0.05;
+    ParticleSpec spec;
+    spec.radius = radius;
+    spec.inverse_mass = 20.0;
+    for (int k = 0; k < 3; ++k) {
+      spec.position = Vec3(0.0, 0.0, radius * (1 + 2 * k));
+      ASSERT_TRUE(world.addParticle(spec).isOk());
+    }
+    for (int step = 0; step < 60; ++step) world.step();
+    const Eigen::VectorXd rested = world.particles().positions().row(2).transpose();
+    spec.position = Vec3(0.0, 0.0, 7.0 * radius + 0.05);
+    spec.velocity = Vec3(0.0, 0.0, -5.0);
+    ASSERT_TRUE(world.addParticle(spec).isOk());
+    Real rose = 0.0;
+    for (int step = 0; step < 60; ++step) {
+      world.step();
+      for (int k = 0; k < 3; ++k) {
+        rose = std::max(rose, world.particles().positions()(2, k) - rested[k]);
+      }
+    }
+    EXPECT_LT(rose, 1e-3) << "restitution " << restitution;
+  }
+}
+
 TEST(ContactBuffer, DropsBeyondTheLimitAndCountsThem) {
   World world;
   CollisionSettings settings;
