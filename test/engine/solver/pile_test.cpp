@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
 
@@ -75,40 +76,68 @@ INSTANTIATE_TEST_SUITE_P(BothBroadphases, Pile,
                            return std::string(broadphaseName(info.param));
                          });
 
+constexpr Real kGrainRadius = 0.05;
+constexpr Real kStrikeSpeed = 5.0;
+
+// A column of `grains` grains (5 cm, 50 g) resting on the ground, settled for a second, and one
+// more 5 cm above the top falling at 5 m/s (the last particle), all of the given restitution;
+// `rested`: the column's heights before the strike.
+World struckColumn(const int grains, const Real restitution, std::vector<Real>& rested) {
+  WorldConfig config;
+  config.gravity = Vec3(0.0, 0.0, -9.81);
+  World world(config);
+  CollisionSettings settings;
+  settings.particle_collisions = true;
+  settings.particle_restitution = restitution;
+  EXPECT_TRUE(world.setCollisionSettings(settings).isOk());
+  EXPECT_TRUE(world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, Material{0.0, 0.5}}).isOk());
+  ParticleSpec spec;
+  spec.radius = kGrainRadius;
+  spec.inverse_mass = 20.0;
+  for (int k = 0; k < grains; ++k) {
+    spec.position = Vec3(0.0, 0.0, kGrainRadius * (1 + 2 * k));
+    EXPECT_TRUE(world.addParticle(spec).isOk());
+  }
+  for (int step = 0; step < 60; ++step) world.step();
+  rested.clear();
+  for (int k = 0; k < grains; ++k) rested.push_back(world.particles().positions()(2, k));
+  spec.position = Vec3(0.0, 0.0, kGrainRadius * (1 + 2 * grains) + 0.05);
+  spec.velocity = Vec3(0.0, 0.0, -kStrikeSpeed);
+  EXPECT_TRUE(world.addParticle(spec).isOk());
+  return world;
+}
+
+// How far the column's grains rose above where they rested, at most, over `steps` frames; and
+// the striker's fastest rise.
+void watchStrike(World& world, const std::vector<Real>& rested, const int steps, Real& rose,
+                 Real& rebound) {
+  rose = 0.0;
+  rebound = 0.0;
+  const auto striker = static_cast<Eigen::Index>(rested.size());
+  for (int step = 0; step < steps; ++step) {
+    world.step();
+    for (std::size_t k = 0; k < rested.size(); ++k) {
+      rose = std::max(rose,
+                      world.particles().positions()(2, static_cast<Eigen::Index>(k)) - rested[k]);
+    }
+    rebound = std::max(rebound, world.particles().velocities()(2, striker));
+  }
+}
+
 // A grain resting on the ground struck from above at 5 m/s stays on the ground, and the other
 // bounces off it as off the ground. The struck grain followed only its ground contact's impulse,
 // which took back the blow from above as well as its weight: it rose 2.9 cm (restitution 0) and
 // 6.2 cm (0.8), floating up and falling back for seven frames.
 TEST(Pile, AGrainStruckFromAboveStaysOnTheGround) {
   for (const Real restitution : {0.0, 0.8}) {
-    WorldConfig config;
-    config.gravity = Vec3(0.0, 0.0, -9.81);
-    World world(config);
-    CollisionSettings settings;
-    settings.particle_collisions = true;
-    settings.particle_restitution = restitution;
-    ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
-    ASSERT_TRUE(world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, Material{0.0, 0.5}}).isOk());
-    const Real radius = 0.05;
-    ParticleSpec spec;
-    spec.radius = radius;
-    spec.inverse_mass = 20.0;
-    spec.position = Vec3(0.0, 0.0, radius);
-    ASSERT_TRUE(world.addParticle(spec).isOk());
-    for (int step = 0; step < 30; ++step) world.step();
-    const Real speed = 5.0;
-    spec.position = Vec3(0.0, 0.0, 3.0 * radius + 0.05);
-    spec.velocity = Vec3(0.0, 0.0, -speed);
-    ASSERT_TRUE(world.addParticle(spec).isOk());
-    Real highest = 0.0;
+    std::vector<Real> rested;
+    World world = struckColumn(1, restitution, rested);
+    Real rose = 0.0;
     Real rebound = 0.0;
-    for (int step = 0; step < 30; ++step) {
-      world.step();
-      highest = std::max(highest, world.particles().positions()(2, 0));
-      rebound = std::max(rebound, world.particles().velocities()(2, 1));
-    }
-    EXPECT_LT(highest, radius + 1e-3) << "restitution " << restitution;
-    EXPECT_NEAR(rebound, restitution * speed, 0.02 * speed) << "restitution " << restitution;
+    watchStrike(world, rested, 30, rose, rebound);
+    EXPECT_LT(rose, 1e-3) << "restitution " << restitution;
+    EXPECT_NEAR(rebound, restitution * kStrikeSpeed, 0.02 * kStrikeSpeed)
+        << "restitution " << restitution;
   }
 }
 
@@ -116,34 +145,11 @@ TEST(Pile, AGrainStruckFromAboveStaysOnTheGround) {
 // cm at restitution 0 and 5.6 cm at 0.8, the middle one 0.7 cm).
 TEST(Pile, AColumnStruckFromAboveStaysInPlace) {
   for (const Real restitution : {0.0, 0.8}) {
-    WorldConfig config;
-    config.gravity = Vec3(0.0, 0.0, -9.81);
-    World world(config);
-    CollisionSettings settings;
-    settings.particle_collisions = true;
-    settings.particle_restitution = restitution;
-    ASSERT_TRUE(world.setCollisionSettings(settings).isOk());
-    ASSERT_TRUE(world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, Material{0.0, 0.5}}).isOk());
-    const Real radius = 0.05;
-    ParticleSpec spec;
-    spec.radius = radius;
-    spec.inverse_mass = 20.0;
-    for (int k = 0; k < 3; ++k) {
-      spec.position = Vec3(0.0, 0.0, radius * (1 + 2 * k));
-      ASSERT_TRUE(world.addParticle(spec).isOk());
-    }
-    for (int step = 0; step < 60; ++step) world.step();
-    const Eigen::VectorXd rested = world.particles().positions().row(2).transpose();
-    spec.position = Vec3(0.0, 0.0, 7.0 * radius + 0.05);
-    spec.velocity = Vec3(0.0, 0.0, -5.0);
-    ASSERT_TRUE(world.addParticle(spec).isOk());
+    std::vector<Real> rested;
+    World world = struckColumn(3, restitution, rested);
     Real rose = 0.0;
-    for (int step = 0; step < 60; ++step) {
-      world.step();
-      for (int k = 0; k < 3; ++k) {
-        rose = std::max(rose, world.particles().positions()(2, k) - rested[k]);
-      }
-    }
+    Real rebound = 0.0;
+    watchStrike(world, rested, 60, rose, rebound);
     EXPECT_LT(rose, 1e-3) << "restitution " << restitution;
   }
 }
