@@ -755,11 +755,7 @@ void generateStepBodyContacts(StepContext& ctx) {
 
 void generateBodyContacts(StepContext& ctx) {
   if (!ctx.bodies) return;
-  if (ctx.substep != 0) {
-    leavePairsToBodySolver(ctx);
-    return;
-  }
-  generateStepBodyContacts(ctx);
+  if (ctx.substep == 0) generateStepBodyContacts(ctx);
   leavePairsToBodySolver(ctx);
 }
 
