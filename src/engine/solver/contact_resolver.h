@@ -220,8 +220,10 @@ class ContactResolver {
   int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, const Vec3Map& v,
                        const ConstScalarMap& inverse_mass, Real h,
                        const CollisionSettings& settings, ContactStats& stats);
-  // For a link: current normal (from a towards b) and length error; false when degenerate.
-  bool linkState(const Contact& c, const Vec3Map& x, Vec3& normal, Real& error) const;
+  // For a link: the normal (from a towards b) and length error between its ends, each at
+  // x - lead v_initial (lead 0: where they are; beta h: where they move from this substep); false
+  // when degenerate.
+  bool linkState(const Contact& c, const Vec3Map& x, Real lead, Vec3& normal, Real& error) const;
   // The least overlap the position correction may leave this substep to the contact of particles
   // a and b made with `penetration` (see the class comment); -inf without the radii.
   Real leastPairDepth(std::uint32_t a, std::uint32_t b, Real penetration) const;

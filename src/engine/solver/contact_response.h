@@ -160,6 +160,18 @@ inline T target(const Mask<T> is_resting, const bool resting_holds, const T v_se
   return result;
 }
 
+// The speed along a taut link that keeps its length through the substep's turn. Moved by h v
+// from where they move from (x - beta h v, whatever beta), its ends change its length by
+// stretch = -h v_sep + drift, the drift being what turning adds (>= 0, the norm is convex;
+// (h v_t)^2 / (2 L) to first order): v_sep = drift / h = stretch / h + v_sep takes it back, the
+// centripetal impulse. A row that only stops v_sep shortens v by 1 - cos(theta) each substep
+// instead (theta the angle turned); this turns it. A turn of theta reflects v_sep
+// (v sin(theta / 2) either way), so the speed is capped at |v_sep|: the row never speeds its
+// ends up, even through a turn the substep cannot resolve (h v_t beyond L).
+inline Real turnSpeed(const Real stretch, const Real v_sep, const Real h) {
+  return std::min(stretch / h + v_sep, std::abs(v_sep));
+}
+
 // One Gauss-Seidel update of a constraint's accumulated impulse: j = (v_target - v_sep) m, with
 // m = 1 / (w_a + w_b); a unilateral constraint (a contact pushes, a cable pulls) keeps its total
 // >= 0, a rod acts either way.
