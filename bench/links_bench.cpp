@@ -1,0 +1,136 @@
+// Links as users swing them: a rope of rods (or cables) from an anchor, released from the
+// horizontal and timed over its first 5 s of whipping at the defaults (60 Hz, 1 substep), with
+// what it kept beside the time: the fraction of its energy lost (above hanging straight down)
+// and the worst stretch of a segment.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "mass_aggregate_sim/engine/world/world.h"
+#include "scenario_common.h"
+
+namespace mass_aggregate_sim {
+namespace engine {
+namespace {
+
+constexpr Real kRopeLength = 1.0;
+constexpr Real kRopeMass = 1.0;
+constexpr int kRopeSteps = 300;
+
+struct Rope {
+  World world;
+  std::vector<ParticleId> knots;
+};
+
+// Released from the horizontal (along +x) or hanging straight down (along -y).
+Rope ropeWorld(const std::int64_t n, const bool cables, const int substeps,
+               const bool hanging = false) {
+  WorldConfig config = bench::scenarioConfig();
+  config.substeps = substeps;
+  Rope rope{World(config), {}};
+  const Real segment = kRopeLength / static_cast<Real>(n);
+  for (std::int64_t i = 0; i < n; ++i) {
+    ParticleSpec spec;
+    const Real along = segment * static_cast<Real>(i + 1);
+    spec.position = hanging ? Vec3(0.0, -along, 0.0) : Vec3(along, 0.0, 0.0);
+    spec.inverse_mass = static_cast<Real>(n) / kRopeMass;
+    spec.radius = 0.25 * segment;
+    rope.knots.push_back(*rope.world.addParticle(spec));
+  }
+  const auto link = [&](const ParticleId a, const ParticleId b) {
+    if (cables) {
+      rope.world.addLink(Cable::between(a, b, segment, 0.0));
+    } else {
+      rope.world.addLink(Rod::between(a, b, segment));
+    }
+  };
+  if (cables) {
+    rope.world.addLink(Cable::anchoredAt(rope.knots[0], Vec3::Zero(), segment, 0.0));
+  } else {
+    rope.world.addLink(Rod::anchoredAt(rope.knots[0], Vec3::Zero(), segment));
+  }
+  for (std::size_t i = 1; i < rope.knots.size(); ++i) link(rope.knots[i - 1], rope.knots[i]);
+  return rope;
+}
+
+// Kinetic plus potential energy, gravity along -y.
+Real ropeEnergy(const World& world) {
+  const auto& x = world.particles().positions();
+  const auto& v = world.particles().velocities();
+  Real energy = 0.0;
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    const Real mass = 1.0 / world.particles().inverseMasses()[i];
+    energy += mass * (0.5 * v.col(i).squaredNorm() + 9.81 * x(1, i));
+  }
+  return energy;
+}
+
+Real worstStretch(const Rope& rope, const Real segment) {
+  const auto& x = rope.world.particles().positions();
+  Real worst = std::abs(x.col(0).norm() - segment);
+  for (Eigen::Index i = 1; i < x.cols(); ++i) {
+    worst = std::max(worst, (x.col(i) - x.col(i - 1)).norm() - segment);
+  }
+  return worst / segment;
+}
+
+// Args: knots, cables (0 rods, 1 cables), substeps.
+void BM_LinksSwingingRope(benchmark::State& state) {
+  const std::int64_t n = state.range(0);
+  const bool cables = state.range(1) != 0;
+  const auto substeps = static_cast<int>(state.range(2));
+  const Real segment = kRopeLength / static_cast<Real>(n);
+  // Hanging straight down, its centre of mass is half its length below the anchor.
+  const Real hanging = -9.81 * kRopeMass * 0.5 * kRopeLength * (1.0 + 1.0 / static_cast<Real>(n));
+  for (auto _ : state) {
+    state.PauseTiming();
+    Rope rope = ropeWorld(n, cables, substeps);
+    state.ResumeTiming();
+    for (int s = 0; s < kRopeSteps; ++s) rope.world.step();
+  }
+  // The same run again, untimed (it is deterministic), for what the rope kept.
+  Rope rope = ropeWorld(n, cables, substeps);
+  const Real start = ropeEnergy(rope.world);
+  Real worst = 0.0;
+  Real passes = 0.0;
+  for (int s = 0; s < kRopeSteps; ++s) {
+    rope.world.step();
+    worst = std::max(worst, worstStretch(rope, segment));
+    passes += rope.world.lastContactStats().iterations;
+  }
+  const Real lost = (start - ropeEnergy(rope.world)) / (start - hanging);
+  // Seconds a step.
+  state.counters["step_time"] = benchmark::Counter(
+      kRopeSteps, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["energy_lost"] = lost;
+  state.counters["worst_stretch"] = worst;
+  // Velocity and position passes a step (of the last substep), on average.
+  state.counters["passes"] = passes / kRopeSteps;
+}
+
+// The same rope hanging still: what a link row costs when nothing turns. Args: knots, substeps.
+void BM_LinksHangingRope(benchmark::State& state) {
+  const std::int64_t n = state.range(0);
+  const auto substeps = static_cast<int>(state.range(1));
+  Rope rope = ropeWorld(n, false, substeps, true);
+  for (auto _ : state) rope.world.step();
+  state.counters["kinetic_energy"] = rope.world.kineticEnergy();
+  state.counters["passes"] = rope.world.lastContactStats().iterations;
+  state.counters["worst_stretch"] = worstStretch(rope, kRopeLength / static_cast<Real>(n));
+}
+
+BENCHMARK(BM_LinksHangingRope)->Args({20, 1})->Args({200, 4})->Unit(benchmark::kMicrosecond);
+
+BENCHMARK(BM_LinksSwingingRope)
+    ->Args({20, 0, 1})
+    ->Args({20, 1, 1})
+    ->Args({20, 0, 4})
+    ->Args({200, 0, 4})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace engine
+}  // namespace mass_aggregate_sim
