@@ -24,7 +24,7 @@ void readCollisionSettings(XmlRpcValue& s, const std::string& k, engine::World& 
   checkKeys(s, k,
             {"particle_collisions", "broadphase", "continuous", "particle_restitution",
              "particle_friction", "max_iterations", "penetration_slop", "collide_linked",
-             "rod_tolerance", "velocity_tolerance", "max_contacts"});
+             "rod_tolerance", "velocity_tolerance", "max_contacts", "runaway_speed"});
   engine::CollisionSettings c = world.collisionSettings();
   c.particle_collisions = boolOr(s, k, "particle_collisions", c.particle_collisions);
   if (has(s, "broadphase")) {
@@ -44,6 +44,7 @@ void readCollisionSettings(XmlRpcValue& s, const std::string& k, engine::World& 
   c.collide_linked = boolOr(s, k, "collide_linked", c.collide_linked);
   c.rod_tolerance = realOr(s, k, "rod_tolerance", c.rod_tolerance);
   c.velocity_tolerance = realOr(s, k, "velocity_tolerance", c.velocity_tolerance);
+  c.runaway_speed = realOr(s, k, "runaway_speed", c.runaway_speed);
   const int max_contacts = intOr(s, k, "max_contacts", static_cast<int>(c.max_contacts));
   if (max_contacts < 0) throw ParamError(k + ".max_contacts", "must be >= 0 (0: no limit)");
   c.max_contacts = static_cast<std::size_t>(max_contacts);

@@ -189,7 +189,8 @@ std::string describeConfiguration(const PhysicsSettings& physics) {
       << "collide_linked: " << boolText(k.collide_linked) << "\n"
       << "rod_tolerance: " << exact(k.rod_tolerance) << "\n"
       << "velocity_tolerance: " << exact(k.velocity_tolerance) << "\n"
-      << "max_contacts: " << k.max_contacts << "\n";
+      << "max_contacts: " << k.max_contacts << "\n"
+      << "runaway_speed: " << exact(k.runaway_speed) << "\n";
   const engine::BodySettings& b = physics.bodies;
   out << "body_substeps: " << b.substeps << "\n"
       << "body_iterations: " << b.iterations << "\n"

@@ -155,6 +155,7 @@ inline const std::vector<const char*>& vocabulary() {
                                                  "rod_tolerance",
                                                  "velocity_tolerance",
                                                  "max_contacts",
+                                                 "runaway_speed",
                                                  "spring",
                                                  "bungee",
                                                  "stiff_spring",

@@ -303,7 +303,8 @@ TEST(SceneLoaderTest, CollidersCollisionsCablesAndRods) {
   const auto loaded = load(R"(
 collisions: {particle_collisions: true, broadphase: uniform_grid, continuous: true,
              particle_restitution: 0.25, particle_friction: 0.5, max_iterations: 12,
-             penetration_slop: 0.002, collide_linked: true, max_contacts: 500}
+             penetration_slop: 0.002, collide_linked: true, max_contacts: 500,
+             runaway_speed: 500}
 colliders:
   - {type: plane, normal: [0, 0, 2], offset: 0.5, restitution: 0.3, friction: 0.7}
   - {type: sphere, center: [1, 2, 3], radius: 0.5}
@@ -330,6 +331,7 @@ links:
   EXPECT_DOUBLE_EQ(c.penetration_slop, 0.002);
   EXPECT_TRUE(c.collide_linked);
   EXPECT_EQ(c.max_contacts, 500u);
+  EXPECT_EQ(c.runaway_speed, 500.0);
   const auto& colliders = world.colliders();
   ASSERT_EQ(colliders.of<engine::PlaneCollider>().size(), 1u);
   EXPECT_TRUE(colliders.of<engine::PlaneCollider>()[0].normal.isApprox(Vec3::UnitZ()));
@@ -393,6 +395,8 @@ TEST(SceneLoaderTest, BadCollidersAndCollisionsNameTheKey) {
   expectError("{collisions: {broadphase: octree}}", "scene.collisions.broadphase",
               "unknown broadphase 'octree'");
   expectError("{collisions: {max_iterations: 0}}", "scene.collisions", "max_iterations");
+  expectError("{collisions: {runaway_speed: 0}}", "scene.collisions",
+              "runaway_speed must be finite and > 0");
   expectError("{collisions: {particle_collisions: yes please}}",
               "scene.collisions.particle_collisions", "true or false");
 }

@@ -58,6 +58,9 @@ Status validateCollisionSettings(const CollisionSettings& settings) {
   if (!std::isfinite(settings.velocity_tolerance) || settings.velocity_tolerance <= 0.0) {
     return Status::error("velocity_tolerance must be finite and > 0");
   }
+  if (!std::isfinite(settings.runaway_speed) || settings.runaway_speed <= 0.0) {
+    return Status::error("runaway_speed must be finite and > 0");
+  }
   if (broadphaseName(settings.broadphase) == std::string("unknown")) {
     return Status::error("broadphase must be one of: " + broadphaseNames());
   }

@@ -57,13 +57,45 @@ bool energyGuardApplies(const StepContext& ctx) {
          !ctx.caches.stability.uncounted_work;
 }
 
-void detectNonFinite(StepContext& ctx) {
+namespace {
+
+void reportFastest(StepContext& ctx) {
+  const auto v = ctx.particles.velocities();
+  std::size_t fastest = 0;
+  Real most = 0.0;
+  for (std::size_t i = 0; i < ctx.particles.size(); ++i) {
+    const Real squared = v.col(i).squaredNorm();
+    if (squared > most) {
+      most = squared;
+      fastest = i;
+    }
+  }
+  if (!(most > ctx.collisions.runaway_speed * ctx.collisions.runaway_speed)) return;
+  ctx.reportDivergence(ctx.particles.idAt(fastest),
+                       "speed " + std::to_string(std::sqrt(most)) +
+                           " m/s beyond the runaway speed after contacts and links acted");
+}
+
+}  // namespace
+
+void detectNonFinite(StepContext& ctx, const bool runaway) {
   const auto x = ctx.particles.positions();
   const auto v = ctx.particles.velocities();
-  const bool finite = ctx.caches.pass_finite_valid
-                          ? ctx.caches.pass_finite
-                          : allFinite(x.data(), v.data(), 3 * ctx.particles.size());
-  if (finite) return;
+  const std::size_t count = 3 * ctx.particles.size();
+  // |v|^2 <= 3 max_k v_k^2: with no component beyond limit / sqrt(3), no particle is beyond it.
+  const Real limit = ctx.collisions.runaway_speed;
+  bool beyond = false;
+  bool finite;
+  if (runaway) {
+    finite = allFinite(x.data(), v.data(), count, limit * limit / 3.0, beyond);
+  } else {
+    finite = ctx.caches.pass_finite_valid ? ctx.caches.pass_finite
+                                          : allFinite(x.data(), v.data(), count);
+  }
+  if (finite) {
+    if (beyond) reportFastest(ctx);
+    return;
+  }
   for (std::size_t i = 0; i < ctx.particles.size(); ++i) {
     const bool bad_x = !x.col(i).allFinite();
     if (bad_x || !v.col(i).allFinite()) {

@@ -15,8 +15,10 @@ bool energyGuardApplies(const StepContext& ctx);
 // reference, the others are compared with it (see WorldConfig::energy_growth_limit). A non-finite
 // value is reported instead of judged.
 void judgeEnergy(StepContext& ctx, const StabilityReport& report, int substeps_used);
-// A non-finite position or velocity, reported with the first such particle.
-void detectNonFinite(StepContext& ctx);
+// A non-finite position or velocity, reported with the first such particle; with `runaway` (after
+// a step in which contacts or links acted) and every value finite, a particle faster than
+// CollisionSettings::runaway_speed, reported with the fastest (found in the same pass).
+void detectNonFinite(StepContext& ctx, bool runaway = false);
 // A body whose pose or velocities are not finite, or that moves faster than the bodies' runaway
 // speed (BodySettings::runaway_speed), reported with the first such body. Checked every step.
 void detectBodyNonFinite(StepContext& ctx);

@@ -26,6 +26,8 @@ inline __attribute__((always_inline)) bool probedFinite(const simd::Real4 lanes,
 
 // True when a[0..count) and b[0..count) hold no Inf and no NaN.
 bool allFinite(const Real* a, const Real* b, std::size_t count);
+// The same pass, also telling whether some b[k]^2 is above bound_squared.
+bool allFinite(const Real* a, const Real* b, std::size_t count, Real bound_squared, bool& beyond);
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -143,7 +143,7 @@ void World::finalise(StepContext& ctx) {
   if (ctx.guard_energy && !had_contacts) {
     judgeEnergy(ctx, caches_->stability.report, substeps_used_);
   } else {
-    detectNonFinite(ctx);
+    detectNonFinite(ctx, had_contacts);
     guard_->energy_known = false;
   }
   if (guard_->divergence_count != divergences_before) applyDivergencePolicy();

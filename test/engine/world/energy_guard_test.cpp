@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "../integrators/integrator_params.h"
 #include "mass_aggregate_sim/engine/world/stability.h"
@@ -187,6 +188,82 @@ TEST(EnergyGuard, NonFiniteIsCaughtInTheStepThatMadeIt) {
     ASSERT_TRUE(world.lastDivergence().has_value());
     EXPECT_EQ(world.lastDivergence()->step, 6u) << integratorName(integrator);
   }
+}
+
+// The energy guard judges only steps in which no contact or link acted; a particle faster than
+// CollisionSettings::runaway_speed after such a step is the divergence there. Free flight is not
+// judged, at any speed.
+TEST(RunawayGuard, AParticleTooFastAfterContactsIsReported) {
+  WorldConfig config;
+  config.gravity = Vec3(0.0, 0.0, -9.81);
+  ParticleSpec spec;
+  spec.position = Vec3(0.0, 0.0, 0.1);
+  spec.radius = 0.1;
+  World flight(config);
+  const ParticleId flying = *flight.addParticle(spec);
+  ASSERT_TRUE(flight.setVelocity(flying, Vec3(2e4, 0.0, 0.0)));
+  flight.step();
+  EXPECT_EQ(flight.divergenceCount(), 0u);
+
+  World world(config);
+  ASSERT_TRUE(world.addCollider(PlaneCollider{Vec3::UnitZ(), 0.0, Material{0.0, 0.0}}));
+  const ParticleId sliding = *world.addParticle(spec);
+  for (int i = 0; i < 5; ++i) world.step();
+  ASSERT_GT(world.lastContactStats().contacts, 0u);
+  ASSERT_TRUE(world.setVelocity(sliding, Vec3(9e3, 0.0, 0.0)));
+  world.step();
+  EXPECT_EQ(world.divergenceCount(), 0u);
+  ASSERT_TRUE(world.setVelocity(sliding, Vec3(2e4, 0.0, 0.0)));
+  world.step();
+  ASSERT_EQ(world.divergenceCount(), 1u);
+  EXPECT_EQ(world.lastDivergence()->particle, sliding);
+  EXPECT_NE(world.lastDivergence()->what.find("runaway speed"), std::string::npos);
+  // A higher limit lets it go.
+  CollisionSettings settings = world.collisionSettings();
+  settings.runaway_speed = 1e5;
+  ASSERT_TRUE(world.setCollisionSettings(settings));
+  world.step();
+  EXPECT_EQ(world.divergenceCount(), 1u);
+  settings.runaway_speed = 0.0;
+  EXPECT_FALSE(world.setCollisionSettings(settings));
+  settings.runaway_speed = std::nan("");
+  EXPECT_FALSE(world.setCollisionSettings(settings));
+}
+
+// A rope of 200 cables whipping at 1 substep runs away (the passes cannot hold a chain that
+// long): its energy grew to 7e19 J per kg in 20 s, finite all along and reported by nothing.
+TEST(RunawayGuard, ARopeThatRunsAwayIsReported) {
+  constexpr int kKnots = 200;
+  const Real segment = 1.0 / kKnots;
+  WorldConfig config;
+  config.gravity = Vec3(0.0, 0.0, -9.81);
+  World world(config);
+  std::vector<ParticleId> knots;
+  for (int i = 0; i < kKnots; ++i) {
+    ParticleSpec spec;
+    spec.position = Vec3(segment * (i + 1), 0.0, 0.0);
+    spec.inverse_mass = kKnots;
+    spec.radius = 0.01;
+    knots.push_back(*world.addParticle(spec));
+  }
+  ASSERT_TRUE(world.addLink(Cable::anchoredAt(knots[0], Vec3::Zero(), segment)));
+  for (int i = 1; i < kKnots; ++i) {
+    ASSERT_TRUE(world.addLink(Cable::between(knots[i - 1], knots[i], segment)));
+  }
+  int step = 0;
+  while (world.divergenceCount() == 0 && step < 1200) {
+    world.step();
+    ++step;
+  }
+  Real fastest = 0.0;
+  for (Eigen::Index i = 0; i < world.particles().velocities().cols(); ++i) {
+    fastest = std::max(fastest, world.particles().velocities().col(i).norm());
+  }
+  std::printf("[ runaway ] rope of %d cables: reported at step %d, fastest knot %.3g m/s\n", kKnots,
+              step, fastest);
+  ASSERT_EQ(world.divergenceCount(), 1u);
+  EXPECT_TRUE(world.particles().positions().allFinite());
+  EXPECT_GT(fastest, 1e4);
 }
 
 }  // namespace

@@ -37,10 +37,14 @@ struct CollisionSettings {
   // in one or two passes, where 1e-9 was never reached in a pile.
   Real velocity_tolerance = 1e-4;
   std::size_t max_contacts = 0;  // 0: the contact buffer grows; else extra contacts are dropped
+  // m/s: a particle faster than this at the end of a step in which contacts or links acted is a
+  // divergence (as BodySettings::runaway_speed for bodies). The energy guard judges only steps
+  // without them; this catches a chain or pile that runs away before its state is not finite.
+  Real runaway_speed = 1e4;
 };
 
 // Finite values, restitution in [0, 1], friction >= 0, max_iterations in [1, 10000], slop >= 0,
-// tolerances > 0.
+// tolerances and the runaway speed > 0.
 Status validateCollisionSettings(const CollisionSettings& settings);
 
 // What the contact phase did in the last substep (dropped: summed over the last step).
