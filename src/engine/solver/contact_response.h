@@ -122,6 +122,11 @@ inline Mask<T> restingOneSide(const T closing_less_built, const T s, const Real 
   return L::either(L::both(decided, resting_by_squares), L::both(L::negate(decided), by_root));
 }
 
+// m/s: a contact that held in the last substep bounces when it closes faster than this (a
+// particle at rest kicked into what holds it; the bodies' default restitution threshold). Slower,
+// it is what a pile's passes left unsolved, which a bounce would throw back up.
+constexpr Real kHeldBounceSpeed = 1.0;
+
 // The target separating velocity of a contact (or a cable: `resting_holds` false), fixed from the
 // velocities before any impulse (the total impulse is what the passes converge, so a bounce must
 // not be re-evaluated from a half-solved state), in this order of precedence:
@@ -131,8 +136,9 @@ inline Mask<T> restingOneSide(const T closing_less_built, const T s, const Real 
 //   apart (overlap beyond the slop is the position phase's work);
 // * a gap p < 0: it may close at up to p / h within the substep, no faster;
 // * an impact (not resting, and it did not act in the last substep: `previous` <= 0, a contact
-//   already pushing is holding, not hitting): -e times the closing velocity less what the forces
-//   built while the contact existed, d / |v_sep| of the substep for an overlap d;
+//   already pushing is holding, not hitting, unless it closes faster than kHeldBounceSpeed):
+//   -e times the closing velocity less what the forces built while the contact existed,
+//   d / |v_sep| of the substep for an overlap d;
 // * else 0.
 template <typename T>
 inline T target(const Mask<T> is_resting, const bool resting_holds, const T v_sep, const T built,
@@ -144,7 +150,8 @@ inline T target(const Mask<T> is_resting, const bool resting_holds, const T v_se
   if (resting_holds && follow && L::all(is_resting)) return resting_target;
   const T zero = L::broadcast(0.0);
   const Mask<T> gap = penetration < zero;
-  const Mask<T> bounces = L::both(L::both(L::negate(is_resting), previous <= zero), L::negate(gap));
+  const Mask<T> hit = L::either(previous <= zero, v_sep - built < L::broadcast(-kHeldBounceSpeed));
+  const Mask<T> bounces = L::both(L::both(L::negate(is_resting), hit), L::negate(gap));
   T result = zero;
   if (L::any(bounces)) {
     const T fraction = penetration / (-v_sep * L::broadcast(h));
