@@ -39,7 +39,7 @@ struct CollisionSettings {
   std::size_t max_contacts = 0;  // 0: the contact buffer grows; else extra contacts are dropped
   // m/s: a particle faster than this at the end of a step in which contacts or links acted is a
   // divergence (as BodySettings::runaway_speed for bodies). The energy guard judges only steps
-  // without them; this catches a chain or pile that runs away before its state is not finite.
+  // without them; this catches a chain or pile that runs away while its state is still finite.
   Real runaway_speed = 1e4;
 };
 
