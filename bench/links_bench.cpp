@@ -10,14 +10,13 @@
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
+#include "rope_scene.h"
 #include "scenario_common.h"
 
 namespace mass_aggregate_sim {
 namespace engine {
 namespace {
 
-constexpr Real kRopeLength = 1.0;
-constexpr Real kRopeMass = 1.0;
 constexpr int kRopeSteps = 300;
 
 struct Rope {
@@ -31,28 +30,9 @@ Rope ropeWorld(const std::int64_t n, const bool cables, const int substeps,
   WorldConfig config = bench::scenarioConfig();
   config.substeps = substeps;
   Rope rope{World(config), {}};
-  const Real segment = kRopeLength / static_cast<Real>(n);
-  for (std::int64_t i = 0; i < n; ++i) {
-    ParticleSpec spec;
-    const Real along = segment * static_cast<Real>(i + 1);
-    spec.position = hanging ? Vec3(0.0, -along, 0.0) : Vec3(along, 0.0, 0.0);
-    spec.inverse_mass = static_cast<Real>(n) / kRopeMass;
-    spec.radius = 0.25 * segment;
-    rope.knots.push_back(*rope.world.addParticle(spec));
-  }
-  const auto link = [&](const ParticleId a, const ParticleId b) {
-    if (cables) {
-      rope.world.addLink(Cable::between(a, b, segment, 0.0));
-    } else {
-      rope.world.addLink(Rod::between(a, b, segment));
-    }
-  };
-  if (cables) {
-    rope.world.addLink(Cable::anchoredAt(rope.knots[0], Vec3::Zero(), segment, 0.0));
-  } else {
-    rope.world.addLink(Rod::anchoredAt(rope.knots[0], Vec3::Zero(), segment));
-  }
-  for (std::size_t i = 1; i < rope.knots.size(); ++i) link(rope.knots[i - 1], rope.knots[i]);
+  const int knots = static_cast<int>(n);
+  rope.knots = rope::add(rope.world, knots, cables, 0.25 * rope::segment(knots),
+                         hanging ? Vec3(0.0, -1.0, 0.0) : Vec3(1.0, 0.0, 0.0));
   return rope;
 }
 
@@ -82,9 +62,10 @@ void BM_LinksSwingingRope(benchmark::State& state) {
   const std::int64_t n = state.range(0);
   const bool cables = state.range(1) != 0;
   const auto substeps = static_cast<int>(state.range(2));
-  const Real segment = kRopeLength / static_cast<Real>(n);
+  const Real segment = rope::segment(static_cast<int>(n));
   // Hanging straight down, its centre of mass is half its length below the anchor.
-  const Real hanging = -9.81 * kRopeMass * 0.5 * kRopeLength * (1.0 + 1.0 / static_cast<Real>(n));
+  const Real hanging =
+      -9.81 * rope::kMass * 0.5 * rope::kLength * (1.0 + 1.0 / static_cast<Real>(n));
   for (auto _ : state) {
     state.PauseTiming();
     Rope rope = ropeWorld(n, cables, substeps);
@@ -119,7 +100,7 @@ void BM_LinksHangingRope(benchmark::State& state) {
   for (auto _ : state) rope.world.step();
   state.counters["kinetic_energy"] = rope.world.kineticEnergy();
   state.counters["passes"] = rope.world.lastContactStats().iterations;
-  state.counters["worst_stretch"] = worstStretch(rope, kRopeLength / static_cast<Real>(n));
+  state.counters["worst_stretch"] = worstStretch(rope, rope::segment(static_cast<int>(n)));
 }
 
 BENCHMARK(BM_LinksHangingRope)->Args({20, 1})->Args({200, 4})->Unit(benchmark::kMicrosecond);

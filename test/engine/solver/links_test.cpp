@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../../../bench/rope_scene.h"
 #include "mass_aggregate_sim/engine/world/world.h"
 
 namespace mass_aggregate_sim {
@@ -209,19 +210,10 @@ TEST(Links, ATurnTooFastForTheStepNeverSpeedsTheEndsUp) {
 // within 1 % of their length.
 TEST(Links, ALongRopeWhippingAtOneSubstepNeverGainsEnergy) {
   constexpr int kKnots = 50;
-  const Real segment = 1.0 / kKnots;
   for (const bool rods : {true, false}) {
     World world = gravityWorld();
-    std::vector<ParticleId> knots;
-    for (int i = 0; i < kKnots; ++i) {
-      knots.push_back(addAt(world, Vec3(segment * (i + 1), 0.0, 0.0), 1.0 / kKnots));
-    }
-    ASSERT_TRUE(rods ? world.addLink(Rod::anchoredAt(knots[0], Vec3::Zero(), segment)).isOk()
-                     : world.addLink(Cable::anchoredAt(knots[0], Vec3::Zero(), segment)).isOk());
-    for (int i = 1; i < kKnots; ++i) {
-      ASSERT_TRUE(rods ? world.addLink(Rod::between(knots[i - 1], knots[i], segment)).isOk()
-                       : world.addLink(Cable::between(knots[i - 1], knots[i], segment)).isOk());
-    }
+    rope::add(world, kKnots, !rods, 0.05);
+    ASSERT_EQ(world.links().size(), static_cast<std::size_t>(kKnots));
     const auto energy = [&] {
       return world.kineticEnergy() + kGravity * world.particles().positions().row(2).sum() / kKnots;
     };

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <limits>
 #include <string>
-#include <vector>
 
+#include "../../../bench/rope_scene.h"
 #include "../integrators/integrator_params.h"
 #include "mass_aggregate_sim/engine/world/stability.h"
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -234,22 +234,11 @@ TEST(RunawayGuard, AParticleTooFastAfterContactsIsReported) {
 // long): its energy grew to 7e19 J per kg in 20 s, finite all along and reported by nothing.
 TEST(RunawayGuard, ARopeThatRunsAwayIsReported) {
   constexpr int kKnots = 200;
-  const Real segment = 1.0 / kKnots;
   WorldConfig config;
   config.gravity = Vec3(0.0, 0.0, -9.81);
   World world(config);
-  std::vector<ParticleId> knots;
-  for (int i = 0; i < kKnots; ++i) {
-    ParticleSpec spec;
-    spec.position = Vec3(segment * (i + 1), 0.0, 0.0);
-    spec.inverse_mass = kKnots;
-    spec.radius = 0.01;
-    knots.push_back(*world.addParticle(spec));
-  }
-  ASSERT_TRUE(world.addLink(Cable::anchoredAt(knots[0], Vec3::Zero(), segment)));
-  for (int i = 1; i < kKnots; ++i) {
-    ASSERT_TRUE(world.addLink(Cable::between(knots[i - 1], knots[i], segment)));
-  }
+  rope::add(world, kKnots, true, 0.01);
+  ASSERT_EQ(world.links().size(), static_cast<std::size_t>(kKnots));
   int step = 0;
   while (world.divergenceCount() == 0 && step < 1200) {
     world.step();
