@@ -130,6 +130,7 @@ void ContactResolver::solveVelocities(std::vector<Contact>& contacts,
   next_warm_key_.resize(prepared_count_);
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
+  if (any_link_rows_) prepareChains(inverse_mass);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
 }
@@ -383,6 +384,8 @@ void ContactResolver::beginPrepare(const Vec3Map& v,
   isolated_corrected_ = false;
   warm_cursor_ = 0;
   row_count_ = 0;
+  any_link_rows_ = false;
+  chains_.clear();
 }
 
 void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t base, Vec3Map& x,
@@ -397,6 +400,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
   if (rows_.size() < row_count_ + count) {
     rows_.resize(row_count_ + count);
     row_contact_.resize(row_count_ + count);
+    row_turn_.resize(row_count_ + count);
   }
   if (friction_total_.size() < row_count_ + count) {
     friction_coefficient_.resize(row_count_ + count);
@@ -534,6 +538,8 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
       any_mixed_ = true;
     }
     any_friction_ = any_friction_ || friction;
+    any_link_rows_ =
+        any_link_rows_ || (c.kind != ContactKind::kContact && (row.flags & Row::kMovable));
 
     row.total = 0.0;
     row.target = 0.0;
@@ -549,7 +555,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
           response::target(resting, c.kind == ContactKind::kContact, v_sep, built, c.penetration,
                            c.restitution, previous, h, follow_scale_ > 0.0, inverse_follow_scale_);
     }
-    if (turn_stretch) row.target += response::turnSpeed(*turn_stretch, v_sep, h);
+    if (c.kind != ContactKind::kContact) row_turn_[row_index] = 0.0;
+    if (turn_stretch) {
+      row_turn_[row_index] = response::turnSpeed(*turn_stretch, v_sep, h);
+      row.target += row_turn_[row_index];
+    }
     row.total = c.kind == ContactKind::kRod ? previous : std::max(Real{0.0}, previous);
     if (found >= 0 && friction && !warm_friction_.empty()) {
       friction_total_[row_index] =
@@ -652,7 +662,7 @@ Real ContactResolver::velocityPass(Vec3Map& v, const ConstScalarMap& inverse_mas
                                           : std::min(k + kPrefetchAhead, count - 1)]);
     }
     Row& row = rows_[k];
-    if (!(row.flags & Row::kActive)) continue;
+    if ((row.flags & (Row::kActive | Row::kChained)) != Row::kActive) continue;
     if (row.a.particleIndex() != held) {
       if (held != kNoParticle) {
         Real* const p = velocity + 3 * std::size_t{held};
@@ -752,11 +762,13 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
     ++passes;
     // Alternate the sweep direction (symmetric Gauss-Seidel): chains converge from both ends.
     const bool backward = passes % 2 == 0;
-    const Real largest_change = any_friction_
-                                    ? (backward ? velocityPass<true, true>(v, inverse_mass)
-                                                : velocityPass<false, true>(v, inverse_mass))
-                                    : (backward ? velocityPass<true, false>(v, inverse_mass)
-                                                : velocityPass<false, false>(v, inverse_mass));
+    Real largest_change = any_friction_ ? (backward ? velocityPass<true, true>(v, inverse_mass)
+                                                    : velocityPass<false, true>(v, inverse_mass))
+                                        : (backward ? velocityPass<true, false>(v, inverse_mass)
+                                                    : velocityPass<false, false>(v, inverse_mass));
+    if (!chains_.empty()) {
+      largest_change = std::max(largest_change, solveChainVelocities(v, inverse_mass));
+    }
     if (largest_change <= settings.velocity_tolerance) break;
   }
   return passes;
@@ -822,6 +834,21 @@ void ContactResolver::followRestingImpulses(Vec3Map& x, const Vec3Map& v,
   }
 }
 
+bool ContactResolver::linkCorrection(const Row& row, const Contact& link, const Vec3Map& x,
+                                     const CollisionSettings& settings, Vec3& normal,
+                                     Real& correction, Real& max_penetration) const {
+  Real error;
+  if (!linkState(link, x, 0.0, normal, error)) return false;
+  max_penetration =
+      std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+  const Real allowed = settings.rod_tolerance * (*links_)[link.link].length;
+  if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
+    return false;
+  }
+  correction = error;
+  return true;
+}
+
 int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
                                       const Vec3Map& v, const ConstScalarMap& inverse_mass,
                                       const Real h, const CollisionSettings& settings,
@@ -873,7 +900,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
           max_closing = std::max(max_closing, closing);
         }
       }
-      if (!(row.flags & Row::kMovable)) continue;
+      if ((row.flags & (Row::kMovable | Row::kChained)) != Row::kMovable) continue;
       Vec3 normal = row.normal;
       Real correction = 0.0;
       if (row.kind == ContactKind::kContact) {
@@ -887,34 +914,16 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
                     : -response::kInfinity);
         if (!response::corrects(depth, slop, least)) continue;
         correction = depth - least;
-      } else {
-        Real error;
-        const Contact& link = contacts[rowContact(k)];
-        if (!linkState(link, x, 0.0, normal, error)) continue;
-        max_penetration =
-            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
-        const Real allowed = settings.rod_tolerance * (*links_)[link.link].length;
-        if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
-          continue;
-        }
-        correction = error;
+      } else if (!linkCorrection(row, contacts[rowContact(k)], x, settings, normal, correction,
+                                 max_penetration)) {
+        continue;
       }
-      // dp_a = w_a / (w_a + w_b) d n,  dp_b = -w_b / (w_a + w_b) d n
-      const Real wa = inverse_mass[row.a.particleIndex()];
-      const Real w_sum =
-          wa + (b ? inverse_mass[row.b.particleIndex()] : 0.0);  // as prepare() summed them
-      const Vec3 move_a = response::share(correction, wa, w_sum) * normal;
-      x.col(row.a.particleIndex()) += move_a;
-      displacement_.col(row.a.particleIndex()) += move_a;
-      if (wa > 0.0) touch(row.a.particleIndex());
-      if (b) {
-        const Real wb = inverse_mass[row.b.particleIndex()];
-        const Vec3 move_b = response::share(-correction, wb, w_sum) * normal;
-        x.col(row.b.particleIndex()) += move_b;
-        displacement_.col(row.b.particleIndex()) += move_b;
-        if (wb > 0.0) touch(row.b.particleIndex());
-      }
+      applyCorrection(row, normal, correction, x, inverse_mass);
       corrected = true;
+    }
+    if (!chains_.empty()) {
+      corrected =
+          correctChainPositions(contacts, x, inverse_mass, settings, max_penetration) || corrected;
     }
   }
   stats.max_closing_velocity = max_closing;

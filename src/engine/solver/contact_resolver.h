@@ -9,7 +9,9 @@
 #include "engine/core/state_hash.h"
 #include "engine/solver/constraint_row.h"
 #include "engine/solver/contact.h"
+#include "engine/solver/contact_response.h"
 #include "engine/solver/isolated_contact_batch.h"
+#include "engine/solver/link_chains.h"
 #include "mass_aggregate_sim/engine/collision/collision_settings.h"
 #include "mass_aggregate_sim/engine/core/types.h"
 
@@ -224,6 +226,40 @@ class ContactResolver {
   // x - lead v_initial (lead 0: where they are; beta h: where they move from this substep); false
   // when degenerate.
   bool linkState(const Contact& c, const Vec3Map& x, Real lead, Vec3& normal, Real& error) const;
+  // A link row's position correction where its ends are now, as one pass makes it: false when it
+  // needs none (within rod_tolerance of its length, a slack cable, coincident ends).
+  bool linkCorrection(const Row& row, const Contact& link, const Vec3Map& x,
+                      const CollisionSettings& settings, Vec3& normal, Real& correction,
+                      Real& max_penetration) const;
+  // Moves a row's ends by `correction` along normal, shared by their inverse masses. Inline: the
+  // position sweep calls it for every corrected contact.
+  inline void applyCorrection(const Row& row, const Vec3& normal, Real correction, Vec3Map& x,
+                              const ConstScalarMap& inverse_mass);
+
+  // Chains of links solved as blocks (link_chains.h; chain_passes.cpp): found and their velocity
+  // blocks factored once a substep, solved after each velocity pass's sweep and each position
+  // pass's sweep, which leave their rows alone.
+  void prepareChains(const ConstScalarMap& inverse_mass);
+  // Scales chain c's turn parts of its targets so its block adds no kinetic energy.
+  void limitChainTurn(std::size_t c);
+  Real solveChainVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass);
+  bool correctChainPositions(const std::vector<Contact>& contacts, Vec3Map& x,
+                             const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
+                             Real& max_penetration);
+  // Moves chain c's knots by the impulses its position block solved for (in chains_.rhs).
+  void applyChainPositionBlock(std::size_t c, Real scale, Vec3Map& x,
+                               const ConstScalarMap& inverse_mass);
+  void saveChainKnots(std::size_t c, const Vec3Map& x);
+  void restoreChainKnots(std::size_t c, Vec3Map& x);
+  // Row k's velocity update by itself (Gauss-Seidel), as velocityPass makes it.
+  Real solveRowVelocity(std::size_t k, Vec3Map& v, const ConstScalarMap& inverse_mass);
+  // Applies impulse j along a row; returns |j| (w_a + w_b), the pass's measure of change.
+  Real applyRowImpulse(const Row& row, Real j, Vec3Map& v, const ConstScalarMap& inverse_mass);
+  Real separatingVelocity(const Row& row, const Eigen::Ref<const Vec3Array>& v) const;
+  Real rowMobility(const Row& row, const ConstScalarMap& inverse_mass) const;  // w_a + w_b
+  // The coupling of chain entry e with the next through their shared knot: s_e s_e+1 w_p n.n'.
+  Real chainCoupling(std::size_t e, const Vec3& normal, const Vec3& next_normal,
+                     const ConstScalarMap& inverse_mass) const;
   // The least overlap the position correction may leave this substep to the contact of particles
   // a and b made with `penetration` (see the class comment); -inf without the radii.
   Real leastPairDepth(std::uint32_t a, std::uint32_t b, Real penetration) const;
@@ -234,6 +270,15 @@ class ContactResolver {
   std::vector<Row> rows_;  // the constraints that are not isolated: [0, row_count_)
   std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
+  std::vector<Real> row_turn_;  // per active link row: the part of its target that turns it
+  bool any_link_rows_ = false;  // some row of this substep is a movable link
+  LinkChains chains_;
+  std::vector<std::uint8_t> chain_factored_;  // per chain: its velocity block's factors kept
+  std::vector<std::uint8_t> chain_newton_;    // per chain: its position block tried this substep
+  // Per chain entry, in the position passes: its direction and whether it is in the block.
+  std::vector<Vec3> chain_normal_;
+  std::vector<std::uint8_t> chain_included_;
+  std::vector<Vec3> chain_saved_;  // a chain's knots' positions and displacements before a block
   // Row k's index in the contacts (k itself when isolated contacts were not looked for).
   std::size_t rowContact(const std::size_t k) const {
     return rows_are_contacts_ ? k : row_contact_[k];
@@ -297,6 +342,27 @@ class ContactResolver {
   std::size_t flagged_count_ = 0;  // particles of touched_ with a touched_flag_ (met by a row)
   std::vector<std::uint32_t> touched_;
 };
+
+inline void ContactResolver::applyCorrection(const Row& row, const Vec3& normal,
+                                             const Real correction, Vec3Map& x,
+                                             const ConstScalarMap& inverse_mass) {
+  // dp_a = w_a / (w_a + w_b) d n,  dp_b = -w_b / (w_a + w_b) d n
+  const bool b = row.flags & Row::kHasB;
+  const Real wa = inverse_mass[row.a.particleIndex()];
+  const Real w_sum =
+      wa + (b ? inverse_mass[row.b.particleIndex()] : 0.0);  // as prepare() summed them
+  const Vec3 move_a = response::share(correction, wa, w_sum) * normal;
+  x.col(row.a.particleIndex()) += move_a;
+  displacement_.col(row.a.particleIndex()) += move_a;
+  if (wa > 0.0) touch(row.a.particleIndex());
+  if (b) {
+    const Real wb = inverse_mass[row.b.particleIndex()];
+    const Vec3 move_b = response::share(-correction, wb, w_sum) * normal;
+    x.col(row.b.particleIndex()) += move_b;
+    displacement_.col(row.b.particleIndex()) += move_b;
+    if (wb > 0.0) touch(row.b.particleIndex());
+  }
+}
 
 }  // namespace engine
 }  // namespace mass_aggregate_sim

@@ -9,7 +9,6 @@
 #include <limits>
 #include <string>
 
-#include "../../../bench/rope_scene.h"
 #include "../integrators/integrator_params.h"
 #include "mass_aggregate_sim/engine/world/stability.h"
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -228,31 +227,6 @@ TEST(RunawayGuard, AParticleTooFastAfterContactsIsReported) {
   EXPECT_FALSE(world.setCollisionSettings(settings));
   settings.runaway_speed = std::nan("");
   EXPECT_FALSE(world.setCollisionSettings(settings));
-}
-
-// A rope of 200 cables whipping at 1 substep runs away (the passes cannot hold a chain that
-// long): its energy grew to 7e19 J per kg in 20 s, finite all along and reported by nothing.
-TEST(RunawayGuard, ARopeThatRunsAwayIsReported) {
-  constexpr int kKnots = 200;
-  WorldConfig config;
-  config.gravity = Vec3(0.0, 0.0, -9.81);
-  World world(config);
-  rope::add(world, kKnots, true, 0.01);
-  ASSERT_EQ(world.links().size(), static_cast<std::size_t>(kKnots));
-  int step = 0;
-  while (world.divergenceCount() == 0 && step < 1200) {
-    world.step();
-    ++step;
-  }
-  Real fastest = 0.0;
-  for (Eigen::Index i = 0; i < world.particles().velocities().cols(); ++i) {
-    fastest = std::max(fastest, world.particles().velocities().col(i).norm());
-  }
-  std::printf("[ runaway ] rope of %d cables: reported at step %d, fastest knot %.3g m/s\n", kKnots,
-              step, fastest);
-  ASSERT_EQ(world.divergenceCount(), 1u);
-  EXPECT_TRUE(world.particles().positions().allFinite());
-  EXPECT_GT(fastest, 1e4);
 }
 
 }  // namespace
