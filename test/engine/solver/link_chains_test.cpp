@@ -186,6 +186,29 @@ TEST(LinkChains, ABoundedEntryThatWouldCrossIsHeldAtItsBound) {
   EXPECT_NEAR(chains.rhs[0], -0.5, 1e-15);
 }
 
+TEST(LinkChains, AHeldEntryIsLetGoWhenItsConstraintIsViolated) {
+  // Two cables, K = [[2, -1], [-1, 2]], r = (-3, 1), nothing held: unbounded both would push
+  // (dl = (-5/3, -1/3)), so both are held at 0; then the second's constraint is violated with no
+  // impulse ((K dl - r)_1 = -1 < 0) and it is let go: 2 dl_1 = 1, dl = (0, 0.5), while the first
+  // stays held ((K dl - r)_0 = 2.5 >= 0).
+  LinkChains chains;
+  std::vector<ParticleRow> rows = {linkRow(0, 1, ContactKind::kCable),
+                                   linkRow(1, 2, ContactKind::kCable)};
+  chains.build(rows.data(), rows.size(), std::vector<Real>(3, 1.0).data(), 3);
+  ASSERT_EQ(chains.size(), 1u);
+  const std::size_t first = chains.row(0) == 0 ? 0 : 1;
+  const std::size_t second = 1 - first;
+  chains.diagonal[0] = chains.diagonal[1] = 2.0;
+  chains.coupling[0] = -1.0;
+  chains.rhs[first] = -3.0;
+  chains.rhs[second] = 1.0;
+  chains.held[0] = chains.held[1] = 0.0;
+  chains.bounded[0] = chains.bounded[1] = 1;
+  ASSERT_TRUE(chains.solveBounded(0));
+  EXPECT_EQ(chains.rhs[first], 0.0);
+  EXPECT_DOUBLE_EQ(chains.rhs[second], 0.5);
+}
+
 TEST(LinkChains, ASingularBlockIsRefused) {
   LinkChains chains;
   std::vector<ParticleRow> rows = {linkRow(0, 1), linkRow(1, 2)};
