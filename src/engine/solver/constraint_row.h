@@ -33,6 +33,7 @@ struct RowFlags {
     kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
     kMovable = 32,     // w_a + w_b > 0 (else never moved, never corrected)
     kChained = 64,     // a link solved with its chain as one block (LinkChains), not row by row
+    kSwept = 128,      // kActive and not kChained: solved row by row by the velocity sweep
   };
 };
 

@@ -130,7 +130,7 @@ void ContactResolver::solveVelocities(std::vector<Contact>& contacts,
   next_warm_key_.resize(prepared_count_);
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
-  if (any_link_rows_) prepareChains(inverse_mass);
+  if (!links.empty()) prepareChains(inverse_mass);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
 }
@@ -384,7 +384,6 @@ void ContactResolver::beginPrepare(const Vec3Map& v,
   isolated_corrected_ = false;
   warm_cursor_ = 0;
   row_count_ = 0;
-  any_link_rows_ = false;
   chains_.clear();
 }
 
@@ -482,6 +481,7 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
     // -h v_sep + the drift of turning, which the row's target takes back (response::turnSpeed).
     std::optional<Real> turn_stretch;
     if (c.kind != ContactKind::kContact) {
+      row_turn_[row_index] = 0.0;
       Vec3 normal;
       Real error;
       // The direction where the ends move from (x - beta h v): taken where they are, the row took
@@ -527,10 +527,11 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
                         !(c.kind != ContactKind::kRod && c.penetration < 0.0 && !resting);
     const bool friction =
         c.kind == ContactKind::kContact && c.friction > 0.0 && c.solvesVelocities();
-    row.flags = static_cast<std::uint8_t>(
-        (b ? Row::kHasB : 0) | (active ? Row::kActive : 0) | (resting ? Row::kResting : 0) |
-        (friction ? Row::kFriction : 0) | (c.kind != ContactKind::kRod ? Row::kUnilateral : 0) |
-        (!(w_sum <= 0.0) ? Row::kMovable : 0));
+    row.flags =
+        static_cast<std::uint8_t>((b ? Row::kHasB : 0) | (active ? Row::kActive | Row::kSwept : 0) |
+                                  (resting ? Row::kResting : 0) | (friction ? Row::kFriction : 0) |
+                                  (c.kind != ContactKind::kRod ? Row::kUnilateral : 0) |
+                                  (!(w_sum <= 0.0) ? Row::kMovable : 0));
     if (active && !(c.kind == ContactKind::kContact && resting)) {
       // Moves with more than resting contacts' impulses: followed row by row.
       mixed_stamp_[c.a] = stamp_;
@@ -538,8 +539,6 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
       any_mixed_ = true;
     }
     any_friction_ = any_friction_ || friction;
-    any_link_rows_ =
-        any_link_rows_ || (c.kind != ContactKind::kContact && (row.flags & Row::kMovable));
 
     row.total = 0.0;
     row.target = 0.0;
@@ -555,7 +554,6 @@ void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t 
           response::target(resting, c.kind == ContactKind::kContact, v_sep, built, c.penetration,
                            c.restitution, previous, h, follow_scale_ > 0.0, inverse_follow_scale_);
     }
-    if (c.kind != ContactKind::kContact) row_turn_[row_index] = 0.0;
     if (turn_stretch) {
       row_turn_[row_index] = response::turnSpeed(*turn_stretch, v_sep, h);
       row.target += row_turn_[row_index];
@@ -662,7 +660,7 @@ Real ContactResolver::velocityPass(Vec3Map& v, const ConstScalarMap& inverse_mas
                                           : std::min(k + kPrefetchAhead, count - 1)]);
     }
     Row& row = rows_[k];
-    if ((row.flags & (Row::kActive | Row::kChained)) != Row::kActive) continue;
+    if (!(row.flags & Row::kSwept)) continue;
     if (row.a.particleIndex() != held) {
       if (held != kNoParticle) {
         Real* const p = velocity + 3 * std::size_t{held};

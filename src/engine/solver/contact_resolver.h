@@ -271,7 +271,6 @@ class ContactResolver {
   std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
   std::vector<Real> row_turn_;  // per active link row: the part of its target that turns it
-  bool any_link_rows_ = false;  // some row of this substep is a movable link
   LinkChains chains_;
   std::vector<std::uint8_t> chain_factored_;  // per chain: its velocity block's factors kept
   std::vector<std::uint8_t> chain_newton_;    // per chain: its position block tried this substep

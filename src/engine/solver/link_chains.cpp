@@ -115,7 +115,10 @@ void LinkChains::walk(ParticleRow* rows, std::uint32_t first, const std::uint32_
     sign_.resize(start);
     return;
   }
-  for (std::size_t e = start; e < row_.size(); ++e) rows[row_[e]].flags |= RowFlags::kChained;
+  for (std::size_t e = start; e < row_.size(); ++e) {
+    ParticleRow& row = rows[row_[e]];
+    row.flags = static_cast<std::uint8_t>((row.flags | RowFlags::kChained) & ~RowFlags::kSwept);
+  }
   chain_begin_.push_back(row_.size());
 }
 

@@ -21,7 +21,7 @@ ParticleRow linkRow(const std::uint32_t a, const std::uint32_t b,
   row.a = BodyRef::particle(a);
   row.b = BodyRef::particle(b == kAnchor ? a : b);
   row.kind = kind;
-  row.flags = static_cast<std::uint8_t>(RowFlags::kMovable | RowFlags::kActive |
+  row.flags = static_cast<std::uint8_t>(RowFlags::kMovable | RowFlags::kActive | RowFlags::kSwept |
                                         (b == kAnchor ? 0 : RowFlags::kHasB));
   return row;
 }
@@ -51,7 +51,10 @@ TEST(LinkChains, AnAnchoredRopeIsOneChainFromTheAnchorOut) {
   const Found found = build(chains, rows, w);
   ASSERT_EQ(found.chains.size(), 1u);
   EXPECT_EQ(found.chains[0], (std::vector<std::uint32_t>{1, 3, 0, 2}));
-  for (const ParticleRow& row : rows) EXPECT_TRUE(row.flags & RowFlags::kChained);
+  for (const ParticleRow& row : rows) {
+    EXPECT_TRUE(row.flags & RowFlags::kChained);
+    EXPECT_FALSE(row.flags & RowFlags::kSwept);  // the velocity sweep leaves it to the chain
+  }
   // Knot 0 is side a of both its rows (+1 +1); knot 1 is side b of (0, 1), side a of (1, 2).
   const std::size_t e = chains.begin(0);
   EXPECT_EQ(chains.sharedKnot(e), 0u);
