@@ -134,13 +134,6 @@ Real ContactResolver::applyRowImpulse(const Row& row, const Real j, Vec3Map& v,
   return std::abs(j * rowMobility(row, inverse_mass));
 }
 
-Real ContactResolver::separatingVelocity(const Row& row,
-                                         const Eigen::Ref<const Vec3Array>& v) const {
-  Vec3 relative = v.col(row.a.particleIndex());
-  if (row.flags & Row::kHasB) relative -= v.col(row.b.particleIndex());
-  return relative.dot(row.normal);
-}
-
 Real ContactResolver::solveChainVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass) {
   Real largest_change = 0.0;
   for (std::size_t c = 0; c < chains_.size(); ++c) {
@@ -198,7 +191,7 @@ bool ContactResolver::correctChainPositions(const std::vector<Contact>& contacts
     const Contact& link = contacts[rowContact(chains_.row(e))];
     if (!linkState(link, x, 0.0, normal, error)) return Real{-1.0};
     const Real length = (*links_)[link.link].length;
-    return (row.kind == ContactKind::kRod ? std::abs(error) : std::max(Real{0.0}, error)) / length;
+    return std::max(Real{0.0}, linkOverlap(row, error)) / length;
   };
   bool corrected = false;
   for (std::size_t c = 0; c < chains_.size(); ++c) {
@@ -221,7 +214,7 @@ bool ContactResolver::correctChainPositions(const std::vector<Contact>& contacts
       chains_.bounded[e] = chain_included_[e] && !rod;
       chains_.diagonal[e] = chain_included_[e] ? rowMobility(row, inverse_mass) : 1.0;
       if (off < 0.0) continue;
-      max_penetration = std::max(max_penetration, rod ? std::abs(error) : error);
+      max_penetration = std::max(max_penetration, linkOverlap(row, error));
       beyond = beyond || off > settings.rod_tolerance;
       worst = std::max(worst, off);
     }

@@ -837,8 +837,7 @@ bool ContactResolver::linkCorrection(const Row& row, const Contact& link, const 
                                      Real& correction, Real& max_penetration) const {
   Real error;
   if (!linkState(link, x, 0.0, normal, error)) return false;
-  max_penetration =
-      std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+  max_penetration = std::max(max_penetration, linkOverlap(row, error));
   const Real allowed = settings.rod_tolerance * (*links_)[link.link].length;
   if (row.kind == ContactKind::kCable ? error <= allowed : std::abs(error) <= allowed) {
     return false;
@@ -888,9 +887,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
               keep && (row.flags & Row::kFriction) ? friction_total_[k] : Vec3(Vec3::Zero());
         }
         if (row.flags & Row::kActive) {
-          Vec3 relative = v.col(row.a.particleIndex());
-          if (b) relative -= v.col(row.b.particleIndex());
-          const Real v_sep = relative.dot(row.normal);
+          const Real v_sep = separatingVelocity(row, v);
           // Beyond what the constraint allows: closing at all, or faster than a gap can absorb.
           const Real closing = row.kind == ContactKind::kRod
                                    ? std::abs(v_sep - row.target)
@@ -943,8 +940,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
         Vec3 normal;
         Real error;
         if (!linkState(contacts[rowContact(k)], x, 0.0, normal, error)) continue;
-        max_penetration =
-            std::max(max_penetration, row.kind == ContactKind::kRod ? std::abs(error) : error);
+        max_penetration = std::max(max_penetration, linkOverlap(row, error));
       }
     }
   }

@@ -255,7 +255,14 @@ class ContactResolver {
   Real solveRowVelocity(std::size_t k, Vec3Map& v, const ConstScalarMap& inverse_mass);
   // Applies impulse j along a row; returns |j| (w_a + w_b), the pass's measure of change.
   Real applyRowImpulse(const Row& row, Real j, Vec3Map& v, const ConstScalarMap& inverse_mass);
-  Real separatingVelocity(const Row& row, const Eigen::Ref<const Vec3Array>& v) const;
+  // (v_a - v_b).n, as the sweep measures it. Inline: the position phase's first pass measures it
+  // for every row.
+  inline Real separatingVelocity(const Row& row, const Eigen::Ref<const Vec3Array>& v) const;
+  // How far a link is off its length the way a correction fixes it: a rod either way (|error|),
+  // a cable only stretched (error, negative when slack).
+  static Real linkOverlap(const Row& row, const Real error) {
+    return row.kind == ContactKind::kRod ? std::abs(error) : error;
+  }
   Real rowMobility(const Row& row, const ConstScalarMap& inverse_mass) const;  // w_a + w_b
   // The coupling of chain entry e with the next through their shared knot: s_e s_e+1 w_p n.n'.
   Real chainCoupling(std::size_t e, const Vec3& normal, const Vec3& next_normal,
@@ -341,6 +348,13 @@ class ContactResolver {
   std::size_t flagged_count_ = 0;  // particles of touched_ with a touched_flag_ (met by a row)
   std::vector<std::uint32_t> touched_;
 };
+
+inline Real ContactResolver::separatingVelocity(const Row& row,
+                                                const Eigen::Ref<const Vec3Array>& v) const {
+  Vec3 relative = v.col(row.a.particleIndex());
+  if (row.flags & Row::kHasB) relative -= v.col(row.b.particleIndex());
+  return relative.dot(row.normal);
+}
 
 inline void ContactResolver::applyCorrection(const Row& row, const Vec3& normal,
                                              const Real correction, Vec3Map& x,
