@@ -2,7 +2,7 @@
 set datafile separator ','
 set terminal pngcairo size 900,640 enhanced font 'DejaVu Sans,11'
 integrators = "explicit_euler semi_implicit_euler position_verlet velocity_verlet rk4 implicit_euler"
-problems = "undamped_oscillator damped_oscillator spring_chain drag_projectile damped_projectile"
+problems = "undamped_oscillator damped_oscillator spring_chain drag_projectile damped_projectile rod_pendulum rod_rope"
 wp = dir.'/work_precision.csv'
 set grid
 set key outside right top
@@ -14,7 +14,7 @@ do for [p in problems] {
   set output dir.'/work_precision_'.p.'.png'
   set title 'Work-precision: '.p.' (diverged runs left out)' noenhanced
   set xlabel 'CPU time per simulated second [s]'
-  set ylabel 'final position error [m]'
+  set ylabel 'largest position error over the run [m]'
   plot for [i in integrators] wp skip 1 \
     using ((strcol(1) eq p && strcol(2) eq i && $6 == 0) ? $5 : NaN):4 with linespoints title i noenhanced
   set output dir.'/error_vs_dt_'.p.'.png'

@@ -40,12 +40,15 @@ const Real kTimeSteps[] = {0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 0.00
 // Errors above this (or not finite) count as diverged.
 constexpr Real kDiverged = 1e3;
 
-Real maxPositionError(const Vec3Array& a, const Vec3Array& b) {
+// The largest distance of any particle from the reference at any sample time.
+Real maxPositionError(const Trajectory& run, const Trajectory& reference) {
   Real worst = 0.0;
-  for (Eigen::Index i = 0; i < a.cols(); ++i) {
-    const Real e = (a.col(i) - b.col(i)).norm();
-    if (!std::isfinite(e)) return std::numeric_limits<Real>::infinity();
-    worst = std::max(worst, e);
+  for (std::size_t k = 0; k < run.size(); ++k) {
+    for (Eigen::Index i = 0; i < run[k].cols(); ++i) {
+      const Real e = (run[k].col(i) - reference[k].col(i)).norm();
+      if (!std::isfinite(e)) return std::numeric_limits<Real>::infinity();
+      worst = std::max(worst, e);
+    }
   }
   return worst;
 }
@@ -59,26 +62,26 @@ struct Sample {
   bool diverged;
 };
 
-// Work-precision: for every problem, integrator and dt, the final position error and the CPU
-// time per simulated second (runs repeated until 20 ms of CPU time are measured).
+// Work-precision: for every problem, integrator and dt, the position error over the trajectory and
+// the CPU time per simulated second (runs repeated until 20 ms of CPU time are measured).
 std::vector<Sample> workPrecision(const std::string& dir) {
-  const ReferenceProblem problems[] = {undampedOscillator(), dampedOscillator(), springChain(),
-                                       dragProjectile(), dampedProjectile()};
+  const ReferenceProblem problems[] = {
+      undampedOscillator(), dampedOscillator(), springChain(), dragProjectile(),
+      dampedProjectile(),   rodPendulum(),      rodRope()};
   FILE* csv = openCsv(dir, "work_precision.csv",
                       "problem,integrator,dt,error,cpu_s_per_simulated_s,diverged");
   std::vector<Sample> samples;
   for (const ReferenceProblem& problem : problems) {
-    const Vec3Array reference =
-        problem.exact ? problem.exact() : finalPositions(problem, Integrator::kRk4, 1e-5);
+    const Trajectory reference = referenceTrajectory(problem);
     std::fprintf(stderr, "work-precision: %s\n", problem.name.c_str());
     for (const Integrator integrator : kIntegrators) {
       for (const Real dt : kTimeSteps) {
-        Vec3Array result;
+        Trajectory result;
         int runs = 0;
         const double start = cpuSeconds();
         double elapsed = 0.0;
         do {
-          result = finalPositions(problem, integrator, dt);
+          result = trajectory(problem, integrator, dt);
           ++runs;
           elapsed = cpuSeconds() - start;
         } while (elapsed < kMinimumCpuSeconds);

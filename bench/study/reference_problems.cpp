@@ -54,7 +54,7 @@ ReferenceProblem undampedOscillator() {
   p.build = [](const Integrator integrator, const Real dt) {
     return oscillator(integrator, dt, 0.0);
   };
-  p.exact = [] { return singlePoint(std::cos(10.0)); };
+  p.exact = [](const Real t) { return singlePoint(std::cos(t)); };
   return p;
 }
 
@@ -66,8 +66,7 @@ ReferenceProblem dampedOscillator() {
   p.build = [](const Integrator integrator, const Real dt) {
     return oscillator(integrator, dt, 2.0 * kZeta);  // c = 2 zeta omega m
   };
-  p.exact = [] {
-    const Real t = 10.0;
+  p.exact = [](const Real t) {
     const Real wd = std::sqrt(1.0 - kZeta * kZeta);
     return singlePoint(std::exp(-kZeta * t) * (std::cos(wd * t) + kZeta / wd * std::sin(wd * t)));
   };
@@ -145,9 +144,8 @@ ReferenceProblem dampedProjectile() {
     world.addParticle(spec);
     return world;
   };
-  p.exact = [=] {
+  p.exact = [=](const Real t) {
     const Real lambda = std::log(kDamping);
-    const Real t = 4.0;
     const Real phi = std::expm1(lambda * t) / lambda;
     Vec3Array x(3, 1);
     x.col(0) = x0 + phi * v0 + (phi - t) / lambda * g;
@@ -156,12 +154,25 @@ ReferenceProblem dampedProjectile() {
   return p;
 }
 
-Vec3Array finalPositions(const ReferenceProblem& problem, const Integrator integrator,
-                         const Real dt) {
+Trajectory trajectory(const ReferenceProblem& problem, const Integrator integrator, const Real dt) {
   World world = problem.build(integrator, dt);
-  const long steps = std::lround(problem.duration / dt);
-  for (long s = 0; s < steps; ++s) world.step();
-  return world.particles().positions();
+  const long samples = std::lround(problem.duration / kSampleInterval);
+  const long steps_per_sample = std::lround(kSampleInterval / dt);
+  Trajectory positions;
+  positions.reserve(samples);
+  for (long k = 0; k < samples; ++k) {
+    for (long s = 0; s < steps_per_sample; ++s) world.step();
+    positions.push_back(world.particles().positions());
+  }
+  return positions;
+}
+
+Trajectory referenceTrajectory(const ReferenceProblem& problem) {
+  if (!problem.exact) return trajectory(problem, Integrator::kRk4, 1e-5);
+  Trajectory positions;
+  const long samples = std::lround(problem.duration / kSampleInterval);
+  for (long k = 1; k <= samples; ++k) positions.push_back(problem.exact(k * kSampleInterval));
+  return positions;
 }
 
 }  // namespace study

@@ -15,15 +15,23 @@ using engine::Vec3;
 using engine::Vec3Array;
 using engine::World;
 
+// Positions are compared every kSampleInterval of simulated time up to the duration: the error of
+// a run is its worst over the trajectory, so a phase error that happens to vanish at the end
+// does not read as accuracy. Every dt of the study divides it.
+constexpr Real kSampleInterval = 0.2;
+
+// The positions at each sample time, the first at kSampleInterval.
+using Trajectory = std::vector<Vec3Array>;
+
 // A reference problem of the accuracy study: a scene, how long to run it, and the positions it
-// must end at (from a closed form, or from a run of RK4 at a tiny step).
+// must pass through (from a closed form, or from a run of RK4 at a tiny step).
 struct ReferenceProblem {
   std::string name;
   std::string description;
   Real duration = 0.0;
   std::function<World(Integrator integrator, Real dt)> build;
-  // Exact final positions, or empty to use a reference run.
-  std::function<Vec3Array()> exact;
+  // Exact positions at time t, or empty to use a reference run.
+  std::function<Vec3Array(Real t)> exact;
 };
 
 // Undamped harmonic oscillator: m = 1, k = 1 (omega = 1), x0 = 1, v0 = 0; x(t) = cos t.
@@ -42,8 +50,17 @@ ReferenceProblem dragProjectile();
 // x(t) = x0 + phi(t) v0 + (phi(t) - t) / ln(d) g, phi(t) = (d^t - 1) / ln(d).
 ReferenceProblem dampedProjectile();
 
-// Runs the scene to the problem's duration; returns the final positions.
-Vec3Array finalPositions(const ReferenceProblem& problem, Integrator integrator, Real dt);
+// A 1 kg particle on a 1 m rod to a fixed point, released from the horizontal.
+ReferenceProblem rodPendulum();
+// Five 1 kg particles joined by 1 m rods, the first to a fixed point, released horizontally: a
+// rope that falls, folds and whips.
+ReferenceProblem rodRope();
+
+// Runs the scene to the problem's duration; returns the positions at every sample time.
+Trajectory trajectory(const ReferenceProblem& problem, Integrator integrator, Real dt);
+// The exact positions at every sample time, or a run of RK4 at dt = 1e-5 when there is no closed
+// form.
+Trajectory referenceTrajectory(const ReferenceProblem& problem);
 
 }  // namespace study
 }  // namespace mass_aggregate_sim
