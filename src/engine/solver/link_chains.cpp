@@ -40,6 +40,7 @@ void LinkChains::clear() {
   shared_.clear();
   sign_.clear();
   chain_begin_.assign(1, 0);
+  held_at_both_ends_.clear();
 }
 
 void LinkChains::build(ParticleRow* rows, const std::size_t count, const Real* inverse_mass,
@@ -119,6 +120,10 @@ void LinkChains::walk(ParticleRow* rows, std::uint32_t first, const std::uint32_
     ParticleRow& row = rows[row_[e]];
     row.flags = static_cast<std::uint8_t>((row.flags | RowFlags::kChained) & ~RowFlags::kSwept);
   }
+  const auto fixed = [inverse_mass](const std::uint32_t end) {
+    return end == kNoParticle || !(inverse_mass[end] > 0.0);
+  };
+  held_at_both_ends_.push_back(fixed(entry) && fixed(knot));
   chain_begin_.push_back(row_.size());
 }
 

@@ -33,6 +33,8 @@ class LinkChains {
   std::size_t begin(const std::size_t chain) const { return chain_begin_[chain]; }
   std::size_t end(const std::size_t chain) const { return chain_begin_[chain + 1]; }
   std::size_t entries() const { return row_.size(); }
+  // Whether chain c ends at a fixed point (an anchor or a fixed knot) at both of its ends.
+  bool heldAtBothEnds(const std::size_t c) const { return held_at_both_ends_[c] != 0; }
 
   // Entry e (in [begin(c), end(c))): its row, and the knot it shares with the next entry of its
   // chain with s_e s_e+1 (the last entry's are unused).
@@ -71,6 +73,7 @@ class LinkChains {
   std::vector<std::uint32_t> shared_;
   std::vector<Real> sign_;
   std::vector<std::size_t> chain_begin_{0};
+  std::vector<std::uint8_t> held_at_both_ends_;  // per chain
   std::vector<Real> pivot_;
   std::vector<Real> lower_;
   std::vector<Real> work_diagonal_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -61,6 +62,40 @@ TEST(LinkChains, AnAnchoredRopeIsOneChainFromTheAnchorOut) {
   EXPECT_EQ(chains.sharedSign(e), 1.0);
   EXPECT_EQ(chains.sharedKnot(e + 1), 1u);
   EXPECT_EQ(chains.sharedSign(e + 1), -1.0);
+  EXPECT_FALSE(chains.heldAtBothEnds(0));  // knot 3 is a free end
+}
+
+TEST(LinkChains, AChainTiedAtBothEndsIsHeldAtBothEnds) {
+  LinkChains chains;
+  {
+    // Anchored at both ends (a rope tied between two points).
+    std::vector<ParticleRow> rows = {linkRow(0, kAnchor), linkRow(0, 1), linkRow(1, 2),
+                                     linkRow(2, kAnchor)};
+    ASSERT_EQ(build(chains, rows, std::vector<Real>(3, 1.0)).chains.size(), 1u);
+    EXPECT_TRUE(chains.heldAtBothEnds(0));
+  }
+  {
+    // From an anchor to a fixed knot, and from that knot to a free end.
+    std::vector<ParticleRow> rows = {linkRow(0, kAnchor), linkRow(0, 1), linkRow(1, 2),
+                                     linkRow(2, 3), linkRow(3, 4)};
+    std::vector<Real> w(5, 1.0);
+    w[2] = 0.0;
+    const Found found = build(chains, rows, w);
+    ASSERT_EQ(found.chains.size(), 2u);
+    for (std::size_t c = 0; c < 2; ++c) {
+      const bool to_the_free_end =
+          std::find(found.chains[c].begin(), found.chains[c].end(), 4u) != found.chains[c].end();
+      EXPECT_EQ(chains.heldAtBothEnds(c), !to_the_free_end) << c;
+    }
+  }
+  {
+    // Between two junctions: its ends move.
+    std::vector<ParticleRow> rows = {linkRow(0, 1),       linkRow(1, 2),       linkRow(2, 3),
+                                     linkRow(0, kAnchor), linkRow(0, kAnchor), linkRow(3, kAnchor),
+                                     linkRow(3, kAnchor)};
+    ASSERT_EQ(build(chains, rows, std::vector<Real>(4, 1.0)).chains.size(), 1u);
+    EXPECT_FALSE(chains.heldAtBothEnds(0));
+  }
 }
 
 TEST(LinkChains, JunctionsFixedKnotsAndLoopsEndChains) {
