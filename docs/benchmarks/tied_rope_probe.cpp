@@ -8,16 +8,23 @@
 //     -o /tmp/tied_rope_probe -L ~/mass_aggregate_sim_ws/devel/lib -lmass_aggregate_sim_engine \
 //     -Wl,-rpath,$HOME/mass_aggregate_sim_ws/devel/lib
 //   for s in 0.999 0.99 0.95 0.8 0.5; do /tmp/tied_rope_probe 20 $s 1; done
-// Arguments: RODS SPAN SUBSTEPS [SECONDS]. The last line of each run on 2026-11-30, by engine:
-//   span   257545a (row by row)                  2c6dfa8 (chains, Newton)             this fix
-//   0.999  -0.75 J (most -0.013), 13 % strain    +1.7 J (most +3.1), 2.8 %          -0.72 J (most
-//   -0.013), 4.9 % 0.99   -0.59 J (most -0.013), 16 %           +1.4 J (most +1.5), 5e-14 -0.54 J
-//   (most -0.013), 4.5 % 0.95   -0.39 J (most -0.012), 10 %           +0.21 J (most +0.21), 2e-15
-//   -0.35 J (most -0.013), 3.5 % 0.8    -0.26 J (most -0.011), 7.3 %          -0.05 J (most +0.07),
-//   2e-13        -0.24 J (most -0.012), 2.2 % 0.5    -0.16 J (most -0.010), 5.8 %          +0.09 J
-//   (most +0.13), 2e-10        -0.14 J (most -0.012), 1.8 %
-// Kinetic energy at 20 s: row by row 1.6e-4 to 2.0e-2 J, chains 8.2e-3 to 2.1 J, this fix 3.2e-4 to
-// 2.0e-3 J.
+// Arguments: RODS SPAN SUBSTEPS [SECONDS]; with BALL_DROP=z a 1 kg ball of 10 cm radius falls
+// from height z onto the middle of the rope (particle collisions on, ground at -0.8 m).
+// The last line of each run (20 rods, 1 substep) on 2026-11-30, by engine: energy at 20 s against
+// the start (the most it rose above it), and the worst strain then.
+//   span   257545a (row by row)   2c6dfa8 (chains, Newton)   a96f853 (held: rows)   d (held: SHAKE)
+//   1.0    -                      -                          -0.82 (-0.013), 4.7 %  -0.84
+//   (-0.011), 4.7 % 0.999  -0.75 (-0.013), 13 %   +1.7 (+3.1), 2.8 %         -0.72 (-0.013), 4.9 %
+//   -0.014 (-0.006), 1e-10 0.99   -0.59 (-0.013), 16 %   +1.4 (+1.5), 5e-14         -0.54
+//   (-0.013), 4.5 %  -0.050 (-0.010), 7e-10 0.95   -0.39 (-0.012), 10 %   +0.21 (+0.21), 2e-15
+//   -0.35 (-0.013), 3.5 %  -0.11 (-0.010), 9e-14 0.8    -0.26 (-0.011), 7.3 %  -0.05 (+0.07), 2e-13
+//   -0.24 (-0.012), 2.2 %  -0.16 (-0.007), 2e-15 0.5    -0.16 (-0.010), 5.8 %  +0.09 (+0.13), 2e-10
+//   -0.14 (-0.012), 1.8 %  -0.11 (-0.003), 3e-12
+// (d: this commit.) Kinetic energy at 20 s: row by row 1.5e-4 to 2.0e-2 J, chains 8.2e-3 to 2.1 J,
+// held rows 3.2e-4 to 9.1e-3 J, held SHAKE 7.6e-4 to 2.7e-3 J (the swing an inextensible rope
+// keeps). With BALL_DROP=0.1 at span 0.9 (60 s): held rows 7 % strain under the ball, energy flat
+// at -2.8 J; held SHAKE 2e-15 strain, flat at -1.88 J (+0.02 J from 3 s to 55 s), KE 0.02 to
+// 0.06 J in both.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +47,15 @@ int main(int argc, char** argv) {
   config.substeps = std::atoi(argv[3]);
   const int seconds = argc > 4 ? std::atoi(argv[4]) : 20;
   World world(config);
+  const char* ball_drop = std::getenv("BALL_DROP");
+  if (ball_drop) {
+    CollisionSettings collisions = world.collisionSettings();
+    collisions.particle_collisions = true;
+    world.setCollisionSettings(collisions);
+    PlaneCollider ground;
+    ground.offset = -0.8;
+    world.addCollider(ground);
+  }
   const double length = 1.0 / rods;
   const double drop = std::sqrt(std::max(0.0, 1.0 - span * span));
   std::vector<ParticleId> knots;
@@ -47,12 +63,18 @@ int main(int argc, char** argv) {
     ParticleSpec spec;
     spec.position = length * Vec3(i * span, 0, -std::min(i, rods - i) * drop);
     spec.inverse_mass = rods;
-    spec.radius = 0.01;
+    spec.radius = ball_drop ? 0.025 : 0.01;  // knots the ball cannot pass between
     knots.push_back(*world.addParticle(spec));
   }
   world.addLink(Rod::anchoredAt(knots.front(), Vec3::Zero(), length));
   for (int i = 1; i < rods - 1; ++i) world.addLink(Rod::between(knots[i - 1], knots[i], length));
   world.addLink(Rod::anchoredAt(knots.back(), Vec3(span, 0, 0), length));
+  if (ball_drop) {
+    ParticleSpec ball;
+    ball.position = Vec3(0.5 * span + 0.013, 0, std::atof(ball_drop));
+    ball.radius = 0.1;
+    world.addParticle(ball);
+  }
   const auto at = [&world](const ParticleId id) {
     return Vec3(world.particles().positions().col(*world.particles().find(id)));
   };

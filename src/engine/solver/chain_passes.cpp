@@ -28,7 +28,8 @@ Real ContactResolver::chainCoupling(const std::size_t e, const Vec3& normal,
   return chains_.sharedSign(e) * inverse_mass[chains_.sharedKnot(e)] * normal.dot(next_normal);
 }
 
-void ContactResolver::prepareChains(const ConstScalarMap& inverse_mass) {
+void ContactResolver::prepareChains(const ConstScalarMap& inverse_mass,
+                                    const Eigen::Ref<const Vec3Array>& acceleration) {
   chains_.build(rows_.data(), row_count_, inverse_mass.data(),
                 static_cast<std::size_t>(inverse_mass.size()));
   if (chains_.empty()) return;
@@ -37,12 +38,8 @@ void ContactResolver::prepareChains(const ConstScalarMap& inverse_mass) {
     chain_included_.resize(chains_.entries());
   }
   chain_factored_.assign(chains_.size(), 0);
-  // A chain held at both ends (a rope tied between two points) takes no Newton step: projected
-  // onto its lengths whole, its knots were lifted every substep with no speed taken for it, and a
-  // 1 kg rope of 20 rods tied between points 0.99 m apart gained 2.0 J in 20 s at 1 substep and
-  // never came to rest; row by row it loses energy and rests within 5 % of its lengths.
-  chain_newton_.resize(chains_.size());
-  for (std::size_t c = 0; c < chains_.size(); ++c) chain_newton_[c] = !chains_.heldAtBothEnds(c);
+  chain_newton_.assign(chains_.size(), 1);
+  held_begin_.assign(chains_.size(), kNotHeld);
   // The velocity phase's rows keep their normals: K is factored once a substep. An inactive row
   // (a slack cable) is out of the block: K_ii = 1, no coupling, no impulse.
   for (std::size_t c = 0; c < chains_.size(); ++c) {
@@ -59,8 +56,71 @@ void ContactResolver::prepareChains(const ConstScalarMap& inverse_mass) {
         }
       }
     }
+    if (chains_.heldAtBothEnds(c)) holdChain(c, inverse_mass, acceleration);
     chain_factored_[c] = chains_.factorKept(c);
-    if (chain_factored_[c]) limitChainTurn(c);
+    if (chain_factored_[c] && held_begin_[c] == kNotHeld) limitChainTurn(c);
+  }
+}
+
+void ContactResolver::holdChain(const std::size_t c, const ConstScalarMap& inverse_mass,
+                                const Eigen::Ref<const Vec3Array>& acceleration) {
+  // Its targets lose their turn parts: the moves of its position block, given back as velocity
+  // (feedHeldChains), turn it instead. Projected onto its lengths with no speed taken for it, a
+  // 1 kg rope of 20 rods tied between points 0.99 m apart was lifted every substep and gained
+  // 2.0 J in 20 s at 1 substep.
+  held_begin_[c] = held_knots_.size();
+  for (std::size_t e = chains_.begin(c); e < chains_.end(c); ++e) {
+    Row& row = rows_[chains_.row(e)];
+    if (row.flags & Row::kActive) row.target -= row_turn_[chains_.row(e)];
+    // Both ends are fixed: the knots that move are the ones its rows share.
+    if (e + 1 == chains_.end(c)) continue;
+    const std::uint32_t knot = chains_.sharedKnot(e);
+    held_knots_.push_back(
+        {knot, static_cast<std::uint32_t>(c), acceleration.col(knot), Vec3::Zero()});
+  }
+}
+
+void ContactResolver::noteHeldMoves(const std::size_t c, const Vec3Map& x, const Real sign) {
+  for (std::size_t k = held_begin_[c];
+       k < held_knots_.size() && held_knots_[k].chain == static_cast<std::uint32_t>(c); ++k) {
+    held_knots_[k].moved += sign * x.col(held_knots_[k].knot);
+  }
+}
+
+void ContactResolver::feedHeldChains(Vec3Map& v, const ConstScalarMap& inverse_mass, const Real h) {
+  // Each held chain's moves dx become velocity, dv = s dx / h, as SHAKE's positions give theirs
+  // (v = (x' - x) / h). The kinetic energy they add, s sum m v.dv + s^2 sum m |dv|^2 / 2, and
+  // the potential energy the moves added against the substep's forces, -sum m a.dx, change the
+  // chain's energy by dE(s); s is the largest in [0, 1] with dE(s) <= 0, or when none, the one
+  // that adds the least kinetic energy. Fed whole, a rope tied 0.5 m apart rose 7 mJ above its
+  // start, and one laid 50 % short of its lengths (a correction, not a drift) 2.2 J.
+  std::size_t first = 0;
+  while (first < held_knots_.size()) {
+    const std::uint32_t c = held_knots_[first].chain;
+    std::size_t end = first;
+    Real linear = 0.0;     // sum m v.dv
+    Real quadratic = 0.0;  // sum m |dv|^2 / 2
+    Real lifted = 0.0;     // -sum m a.dx
+    for (; end < held_knots_.size() && held_knots_[end].chain == c; ++end) {
+      const HeldKnot& held = held_knots_[end];
+      const Real m = 1.0 / inverse_mass[held.knot];
+      const Vec3 dv = held.moved / h;
+      linear += m * v.col(held.knot).dot(dv);
+      quadratic += 0.5 * m * dv.squaredNorm();
+      lifted -= m * held.acceleration.dot(held.moved);
+    }
+    Real s = 1.0;
+    if (quadratic > 0.0 && linear + quadratic + lifted > 0.0) {
+      const Real discriminant = linear * linear - 4.0 * quadratic * lifted;
+      const Real root = discriminant >= 0.0
+                            ? (-linear + std::sqrt(discriminant)) / (2.0 * quadratic)
+                            : -response::kInfinity;
+      s = std::clamp(root >= 0.0 ? root : -linear / (2.0 * quadratic), Real{0.0}, Real{1.0});
+    }
+    for (std::size_t k = first; k < end; ++k) {
+      v.col(held_knots_[k].knot) += (s / h) * held_knots_[k].moved;
+    }
+    first = end;
   }
 }
 
@@ -185,19 +245,19 @@ Real ContactResolver::solveChainVelocities(Vec3Map& v, const ConstScalarMap& inv
   return largest_change;
 }
 
+Real ContactResolver::chainStrain(const std::size_t e, const std::vector<Contact>& contacts,
+                                  const Vec3Map& x, Vec3& normal, Real& error) const {
+  const Row& row = rows_[chains_.row(e)];
+  const Contact& link = contacts[rowContact(chains_.row(e))];
+  if (!linkState(link, x, 0.0, normal, error)) return -1.0;
+  const Real length = (*links_)[link.link].length;
+  return std::max(Real{0.0}, linkOverlap(row, error)) / length;
+}
+
 bool ContactResolver::correctChainPositions(const std::vector<Contact>& contacts, Vec3Map& x,
                                             const ConstScalarMap& inverse_mass,
                                             const CollisionSettings& settings,
                                             Real& max_penetration) {
-  // The share of its length a chain row is off by in the way a correction would fix (a rod
-  // either way, a cable stretched); negative for coincident ends.
-  const auto strain = [&](const std::size_t e, Vec3& normal, Real& error) {
-    const Row& row = rows_[chains_.row(e)];
-    const Contact& link = contacts[rowContact(chains_.row(e))];
-    if (!linkState(link, x, 0.0, normal, error)) return Real{-1.0};
-    const Real length = (*links_)[link.link].length;
-    return std::max(Real{0.0}, linkOverlap(row, error)) / length;
-  };
   bool corrected = false;
   for (std::size_t c = 0; c < chains_.size(); ++c) {
     const std::size_t begin = chains_.begin(c);
@@ -210,7 +270,7 @@ bool ContactResolver::correctChainPositions(const std::vector<Contact>& contacts
       const Row& row = rows_[chains_.row(e)];
       const bool rod = row.kind == ContactKind::kRod;
       Real error = 0.0;
-      const Real off = strain(e, chain_normal_[e], error);
+      const Real off = chainStrain(e, contacts, x, chain_normal_[e], error);
       // A link with coincident ends is out of the block; a cable is in it, bounded (it only
       // pulls, and one slack enough stays without impulse).
       chain_included_[e] = off >= 0.0;
@@ -225,51 +285,63 @@ bool ContactResolver::correctChainPositions(const std::vector<Contact>& contacts
     }
     if (!beyond) continue;
     corrected = true;
-    // K dl = C: the length change of row i is -(K dl)_i to first order, where the ends move by
-    // dx_a = w_a dl n, dx_b = -w_b dl n; a cable only pulls (dl >= 0).
-    for (std::size_t e = begin; e < end; ++e) {
-      chains_.coupling[e] =
-          e + 1 < end && chain_included_[e] && chain_included_[e + 1]
-              ? chainCoupling(e, chain_normal_[e], chain_normal_[e + 1], inverse_mass)
-              : 0.0;
-    }
-    if (chain_newton_[c] && chains_.solveBounded(c)) {
-      // One Newton step on the lengths, along the directions the links have now: exact to first
-      // order, and far off where links are stretched and bent (a 50-rod rope 30 % stretched in a
-      // zigzag went to 100 %). Kept, whole, halved or quartered, only when it leaves the chain's
-      // worst strain lower; refused, the chain goes row by row for the rest of the substep (a
-      // 200-rod rope whipping at 4 substeps, refused on most passes, cost 3.4 times as much as
-      // row by row trying on every pass, 1.6 times so, with the same worst stretch).
-      saveChainKnots(c, x);
-      bool lowered = false;
-      Real scale = 1.0;
-      for (int attempt = 0; attempt < kNewtonTries && !lowered; ++attempt, scale *= 0.5) {
-        if (attempt > 0) restoreChainKnots(c, x);
-        applyChainPositionBlock(c, scale, x, inverse_mass);
-        Real after = 0.0;
-        for (std::size_t e = begin; e < end; ++e) {
-          Vec3 normal;
-          Real error;
-          after = std::max(after, strain(e, normal, error));
-        }
-        lowered = after < worst;
-      }
-      if (lowered) continue;
-      restoreChainKnots(c, x);
-      chain_newton_[c] = 0;
-    }
-    // Row by row, as the sweep corrects a link that is in no chain.
-    for (std::size_t e = begin; e < end; ++e) {
-      const Row& row = rows_[chains_.row(e)];
-      Vec3 normal;
-      Real correction = 0.0;
-      if (linkCorrection(row, contacts[rowContact(chains_.row(e))], x, settings, normal, correction,
-                         max_penetration)) {
-        applyCorrection(row, normal, correction, x, inverse_mass);
-      }
-    }
+    const bool held = held_begin_[c] != kNotHeld;
+    if (held) noteHeldMoves(c, x, -1.0);
+    correctChain(c, contacts, x, inverse_mass, settings, worst, max_penetration);
+    if (held) noteHeldMoves(c, x, 1.0);
   }
   return corrected;
+}
+
+void ContactResolver::correctChain(const std::size_t c, const std::vector<Contact>& contacts,
+                                   Vec3Map& x, const ConstScalarMap& inverse_mass,
+                                   const CollisionSettings& settings, const Real worst,
+                                   Real& max_penetration) {
+  const std::size_t begin = chains_.begin(c);
+  const std::size_t end = chains_.end(c);
+  // K dl = C: the length change of row i is -(K dl)_i to first order, where the ends move by
+  // dx_a = w_a dl n, dx_b = -w_b dl n; a cable only pulls (dl >= 0).
+  for (std::size_t e = begin; e < end; ++e) {
+    chains_.coupling[e] =
+        e + 1 < end && chain_included_[e] && chain_included_[e + 1]
+            ? chainCoupling(e, chain_normal_[e], chain_normal_[e + 1], inverse_mass)
+            : 0.0;
+  }
+  if (chain_newton_[c] && chains_.solveBounded(c)) {
+    // One Newton step on the lengths, along the directions the links have now: exact to first
+    // order, and far off where links are stretched and bent (a 50-rod rope 30 % stretched in a
+    // zigzag went to 100 %). Kept, whole, halved or quartered, only when it leaves the chain's
+    // worst strain lower; refused, the chain goes row by row for the rest of the substep (a
+    // 200-rod rope whipping at 4 substeps, refused on most passes, cost 3.4 times as much as
+    // row by row trying on every pass, 1.6 times so, with the same worst stretch).
+    saveChainKnots(c, x);
+    bool lowered = false;
+    Real scale = 1.0;
+    for (int attempt = 0; attempt < kNewtonTries && !lowered; ++attempt, scale *= 0.5) {
+      if (attempt > 0) restoreChainKnots(c, x);
+      applyChainPositionBlock(c, scale, x, inverse_mass);
+      Real after = 0.0;
+      for (std::size_t e = begin; e < end; ++e) {
+        Vec3 normal;
+        Real error;
+        after = std::max(after, chainStrain(e, contacts, x, normal, error));
+      }
+      lowered = after < worst;
+    }
+    if (lowered) return;
+    restoreChainKnots(c, x);
+    chain_newton_[c] = 0;
+  }
+  // Row by row, as the sweep corrects a link that is in no chain.
+  for (std::size_t e = begin; e < end; ++e) {
+    const Row& row = rows_[chains_.row(e)];
+    Vec3 normal;
+    Real correction = 0.0;
+    if (linkCorrection(row, contacts[rowContact(chains_.row(e))], x, settings, normal, correction,
+                       max_penetration)) {
+      applyCorrection(row, normal, correction, x, inverse_mass);
+    }
+  }
 }
 
 void ContactResolver::applyChainPositionBlock(const std::size_t c, const Real scale, Vec3Map& x,

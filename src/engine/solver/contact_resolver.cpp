@@ -130,7 +130,7 @@ void ContactResolver::solveVelocities(std::vector<Contact>& contacts,
   next_warm_key_.resize(prepared_count_);
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
-  if (!links.empty()) prepareChains(inverse_mass);
+  if (!links.empty()) prepareChains(inverse_mass, acceleration);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
 }
@@ -385,6 +385,7 @@ void ContactResolver::beginPrepare(const Vec3Map& v,
   warm_cursor_ = 0;
   row_count_ = 0;
   chains_.clear();
+  held_knots_.clear();
 }
 
 void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t base, Vec3Map& x,
@@ -846,10 +847,9 @@ bool ContactResolver::linkCorrection(const Row& row, const Contact& link, const 
   return true;
 }
 
-int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x,
-                                      const Vec3Map& v, const ConstScalarMap& inverse_mass,
-                                      const Real h, const CollisionSettings& settings,
-                                      ContactStats& stats) {
+int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
+                                      const ConstScalarMap& inverse_mass, const Real h,
+                                      const CollisionSettings& settings, ContactStats& stats) {
   const std::size_t count = row_count_;
   const bool prefetch = count * sizeof(Row) > kStreamingBytes;
   const Real slop = settings.penetration_slop;
@@ -861,6 +861,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
   } else if (next_warm_friction_.empty()) {
     next_warm_friction_.assign(next_warm_key_.size(), Vec3::Zero());
   }
+  for (HeldKnot& held : held_knots_) held.moved.setZero();
   int passes = 0;
   bool corrected = true;
   while (corrected && passes < settings.max_iterations) {
@@ -921,6 +922,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
           correctChainPositions(contacts, x, inverse_mass, settings, max_penetration) || corrected;
     }
   }
+  if (!held_knots_.empty()) feedHeldChains(v, inverse_mass, h);
   stats.max_closing_velocity = max_closing;
   warm_key_.swap(next_warm_key_);
   warm_normal_.swap(next_warm_normal_);

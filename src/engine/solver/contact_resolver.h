@@ -219,7 +219,7 @@ class ContactResolver {
   void indexWarmByKey() const;
   // Also, in its first pass, keeps the impulses for the next substep and measures the closing
   // speed left (velocities are final by then).
-  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, const Vec3Map& v,
+  int resolvePositions(const std::vector<Contact>& contacts, Vec3Map& x, Vec3Map& v,
                        const ConstScalarMap& inverse_mass, Real h,
                        const CollisionSettings& settings, ContactStats& stats);
   // For a link: the normal (from a towards b) and length error between its ends, each at
@@ -239,13 +239,31 @@ class ContactResolver {
   // Chains of links solved as blocks (link_chains.h; chain_passes.cpp): found and their velocity
   // blocks factored once a substep, solved after each velocity pass's sweep and each position
   // pass's sweep, which leave their rows alone.
-  void prepareChains(const ConstScalarMap& inverse_mass);
+  void prepareChains(const ConstScalarMap& inverse_mass,
+                     const Eigen::Ref<const Vec3Array>& acceleration);
   // Scales chain c's turn parts of its targets so its block adds no kinetic energy.
   void limitChainTurn(std::size_t c);
+  // A chain held at both ends (a rope tied between two points) is solved as SHAKE solves it:
+  // without the turn parts of its targets, and with its position block's moves given back to its
+  // knots as velocity at the end of the position phase (feedHeldChains).
+  void holdChain(std::size_t c, const ConstScalarMap& inverse_mass,
+                 const Eigen::Ref<const Vec3Array>& acceleration);
+  // Adds sign * x of held chain c's knots to what its corrections moved them by.
+  void noteHeldMoves(std::size_t c, const Vec3Map& x, Real sign);
+  void feedHeldChains(Vec3Map& v, const ConstScalarMap& inverse_mass, Real h);
   Real solveChainVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass);
   bool correctChainPositions(const std::vector<Contact>& contacts, Vec3Map& x,
                              const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
                              Real& max_penetration);
+  // Brings chain c to its lengths for one pass: its Newton step, else row by row. `worst` is its
+  // worst strain now.
+  void correctChain(std::size_t c, const std::vector<Contact>& contacts, Vec3Map& x,
+                    const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
+                    Real worst, Real& max_penetration);
+  // The share of its length chain entry e is off by in the way a correction would fix (a rod
+  // either way, a cable stretched), with its direction and error; negative for coincident ends.
+  Real chainStrain(std::size_t e, const std::vector<Contact>& contacts, const Vec3Map& x,
+                   Vec3& normal, Real& error) const;
   // Moves chain c's knots by the impulses its position block solved for (in chains_.rhs).
   void applyChainPositionBlock(std::size_t c, Real scale, Vec3Map& x,
                                const ConstScalarMap& inverse_mass);
@@ -285,6 +303,16 @@ class ContactResolver {
   std::vector<Vec3> chain_normal_;
   std::vector<std::uint8_t> chain_included_;
   std::vector<Vec3> chain_saved_;  // a chain's knots' positions and displacements before a block
+  // The knots of the held chains, each chain's together.
+  struct HeldKnot {
+    std::uint32_t knot;
+    std::uint32_t chain;
+    Vec3 acceleration;  // over the substep: the forces that work against its moves
+    Vec3 moved;         // by its chain's corrections in this position phase
+  };
+  static constexpr std::size_t kNotHeld = ~std::size_t{0};
+  std::vector<HeldKnot> held_knots_;
+  std::vector<std::size_t> held_begin_;  // per chain: its first held knot, or kNotHeld
   // Row k's index in the contacts (k itself when isolated contacts were not looked for).
   std::size_t rowContact(const std::size_t k) const {
     return rows_are_contacts_ ? k : row_contact_[k];
