@@ -1,12 +1,13 @@
 // Links as users swing them: a rope of rods (or cables) from an anchor, released from the
 // horizontal and timed over its first 5 s of whipping at the defaults (60 Hz, 1 substep), with
 // what it kept beside the time: the fraction of its energy lost (above hanging straight down)
-// and the worst stretch of a segment.
+// and the worst stretch of a segment; and a rope tied between two anchors.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -103,6 +104,49 @@ void BM_LinksHangingRope(benchmark::State& state) {
   state.counters["worst_stretch"] = worstStretch(rope, rope::segment(static_cast<int>(n)));
 }
 
+// A rope of 20 rods tied between two anchors, released as a V of its lengths (rope::tie), timed
+// over 5 s with what it kept: the most its energy rose above the start (J; negative when it
+// never did) and the worst strain of a rod at the end. Args: span (cm), substeps.
+void BM_LinksTiedRope(benchmark::State& state) {
+  constexpr int kRods = 20;
+  const Real span = static_cast<Real>(state.range(0)) / 100.0;
+  const auto substeps = static_cast<int>(state.range(1));
+  const auto tied = [&] {
+    WorldConfig config = bench::scenarioConfig();
+    config.substeps = substeps;
+    World world(config);
+    rope::tie(world, kRods, span, -Vec3::UnitY(), 0.25 * rope::segment(kRods));
+    return world;
+  };
+  for (auto _ : state) {
+    state.PauseTiming();
+    World world = tied();
+    state.ResumeTiming();
+    for (int s = 0; s < kRopeSteps; ++s) world.step();
+  }
+  World world = tied();
+  const Real start = ropeEnergy(world);
+  Real most = -std::numeric_limits<Real>::infinity();
+  Real passes = 0.0;
+  for (int s = 0; s < kRopeSteps; ++s) {
+    world.step();
+    most = std::max(most, ropeEnergy(world) - start);
+    passes += world.lastContactStats().iterations;
+  }
+  const auto& x = world.particles().positions();
+  const Real length = rope::segment(kRods);
+  Real worst = std::abs(x.col(0).norm() - length);
+  for (Eigen::Index i = 1; i < x.cols(); ++i) {
+    worst = std::max(worst, std::abs((x.col(i) - x.col(i - 1)).norm() - length));
+  }
+  worst = std::max(worst, std::abs((x.col(x.cols() - 1) - span * Vec3::UnitX()).norm() - length));
+  state.counters["step_time"] = benchmark::Counter(
+      kRopeSteps, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["most_gained"] = most;
+  state.counters["worst_stretch"] = worst / length;
+  state.counters["passes"] = passes / kRopeSteps;
+}
+
 BENCHMARK(BM_LinksHangingRope)->Args({20, 1})->Args({200, 4})->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_LinksSwingingRope)
@@ -110,6 +154,12 @@ BENCHMARK(BM_LinksSwingingRope)
     ->Args({20, 1, 1})
     ->Args({20, 0, 4})
     ->Args({200, 0, 4})
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_LinksTiedRope)
+    ->Args({99, 1})
+    ->Args({50, 1})
+    ->Args({99, 4})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

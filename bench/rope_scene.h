@@ -3,10 +3,12 @@
 // (test/engine/solver/links_test.cpp, test/engine/world/energy_guard_test.cpp), so all run the
 // same rope: `knots` particles, 1 kg in all, on as many links of 1 m / knots from an anchor at the
 // origin, laid out along `direction` (released from the horizontal, or hanging when it points
-// down), knots of the given radius. Particle collisions are the caller's; even without them the
-// radius orders the passes (rows are sorted by height in buckets of half the smallest radius), so
-// each user keeps the one its figures were measured with.
+// down), knots of the given radius; or tied between two anchors (tie()). Particle collisions are
+// the caller's; even without them the radius orders the passes (rows are sorted by height in
+// buckets of half the smallest radius), so each user keeps the one its figures were measured with.
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "mass_aggregate_sim/engine/world/world.h"
@@ -44,6 +46,30 @@ inline std::vector<ParticleId> add(World& world, const int knots, const bool cab
       world.addLink(Rod::between(ids[i - 1], ids[i], length));
     }
   }
+  return ids;
+}
+
+// A rope of `rods` rods (1 m, 1 kg) tied between anchors at the origin and at `span` (< 1 m) along
+// x, laid as a V of its exact lengths: down along `down` at the angle acos(span) to its middle,
+// then up (`rods` even). With `straight`, laid from anchor to anchor instead, its rods span / rods
+// long, short of their lengths. Returns the knots from the origin out.
+inline std::vector<ParticleId> tie(World& world, const int rods, const Real span, const Vec3& down,
+                                   const Real radius, const bool straight = false) {
+  const Real length = segment(rods);
+  const Real drop = straight ? 0.0 : std::sqrt(1.0 - span * span);
+  std::vector<ParticleId> ids;
+  for (int i = 1; i < rods; ++i) {
+    ParticleSpec spec;
+    spec.position = length * (static_cast<Real>(i) * span * Vec3::UnitX() +
+                              static_cast<Real>(std::min(i, rods - i)) * drop * down);
+    spec.inverse_mass = static_cast<Real>(rods) / kMass;
+    spec.radius = radius;
+    ids.push_back(*world.addParticle(spec));
+  }
+  world.addLink(Rod::anchoredAt(ids.front(), Vec3::Zero(), length));
+  for (std::size_t i = 1; i < ids.size(); ++i)
+    world.addLink(Rod::between(ids[i - 1], ids[i], length));
+  world.addLink(Rod::anchoredAt(ids.back(), span * Vec3::UnitX(), length));
   return ids;
 }
 

@@ -334,19 +334,8 @@ TEST(Links, ARopeTiedBetweenTwoPointsNeverGainsEnergyAndKeepsItsLengths) {
   };
   for (const Tied tied : {Tied{0.99, false}, Tied{0.5, false}, Tied{0.5, true}}) {
     World world = gravityWorld();
-    const Real drop = tied.straight ? 0.0 : std::sqrt(1.0 - tied.span * tied.span);
-    std::vector<ParticleId> knots;
-    for (int i = 1; i < kRods; ++i) {
-      const int from_end = std::min(i, kRods - i);
-      knots.push_back(
-          addAt(world, kLength * Vec3(i * tied.span, 0.0, -from_end * drop), 1.0 / kRods));
-    }
-    ASSERT_TRUE(world.addLink(Rod::anchoredAt(knots.front(), Vec3::Zero(), kLength)).isOk());
-    for (int i = 1; i < kRods - 1; ++i) {
-      ASSERT_TRUE(world.addLink(Rod::between(knots[i - 1], knots[i], kLength)).isOk());
-    }
-    ASSERT_TRUE(
-        world.addLink(Rod::anchoredAt(knots.back(), Vec3(tied.span, 0.0, 0.0), kLength)).isOk());
+    rope::tie(world, kRods, tied.span, -Vec3::UnitZ(), 0.05, tied.straight);
+    ASSERT_EQ(world.links().of<Rod>().size(), static_cast<std::size_t>(kRods));
     const Real start = world.totalEnergy();
     Real most_gained = -std::numeric_limits<Real>::infinity();
     for (int s = 0; s < 1200; ++s) {
