@@ -11,23 +11,13 @@ namespace {
 using engine::ParticleId;
 using engine::ParticleSpec;
 using engine::Rod;
-using engine::WorldConfig;
 
 constexpr Real kG = 9.81;
 constexpr Real kLength = 1.0;
 
-World linkWorld(const Integrator integrator, const Real dt) {
-  WorldConfig config;
-  config.dt = dt;
-  config.integrator = integrator;
-  config.gravity = Vec3(0.0, -kG, 0.0);
-  config.max_frame_time = std::max(0.25, dt);
-  return World(config);
-}
-
 // Unit masses at (L, 0, 0), (2 L, 0, 0), ... joined by rods of length L, the first to the origin.
 World rope(const Integrator integrator, const Real dt, const int knots) {
-  World world = linkWorld(integrator, dt);
+  World world = emptyWorld(integrator, dt, Vec3(0.0, -kG, 0.0));
   ParticleId previous;
   for (int i = 0; i < knots; ++i) {
     ParticleSpec spec;

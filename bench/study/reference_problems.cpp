@@ -14,15 +14,6 @@ using engine::WorldConfig;
 
 constexpr Real kZeta = 0.1;
 
-World emptyWorld(const Integrator integrator, const Real dt, const Vec3& gravity) {
-  WorldConfig config;
-  config.dt = dt;
-  config.integrator = integrator;
-  config.gravity = gravity;
-  config.max_frame_time = std::max(0.25, dt);
-  return World(config);
-}
-
 // A unit mass on a spring of rest length 0 to the origin, released at x = 1: along x the force
 // is -(k x + c v), the linear oscillator.
 World oscillator(const Integrator integrator, const Real dt, const Real damping) {
@@ -45,6 +36,15 @@ Vec3Array singlePoint(const Real x) {
 }
 
 }  // namespace
+
+World emptyWorld(const Integrator integrator, const Real dt, const Vec3& gravity) {
+  WorldConfig config;
+  config.dt = dt;
+  config.integrator = integrator;
+  config.gravity = gravity;
+  config.max_frame_time = std::max(0.25, dt);
+  return World(config);
+}
 
 ReferenceProblem undampedOscillator() {
   ReferenceProblem p;

@@ -56,6 +56,10 @@ ReferenceProblem rodPendulum();
 // rope that falls, folds and whips.
 ReferenceProblem rodRope();
 
+// A world stepping at dt with the integrator under the given gravity, and no frame-time cap below
+// dt, for a problem's scene.
+World emptyWorld(Integrator integrator, Real dt, const Vec3& gravity);
+
 // Runs the scene to the problem's duration; returns the positions at every sample time.
 Trajectory trajectory(const ReferenceProblem& problem, Integrator integrator, Real dt);
 // The exact positions at every sample time, or a run of RK4 at dt = 1e-5 when there is no closed
