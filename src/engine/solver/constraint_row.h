@@ -32,8 +32,8 @@ struct RowFlags {
     kFriction = 8,     // a contact with friction > 0
     kUnilateral = 16,  // pushes only (contact) or pulls only (cable): total impulse >= 0
     kMovable = 32,     // w_a + w_b > 0 (else never moved, never corrected)
-    kChained = 64,     // a link solved with its chain as one block (LinkChains), not row by row
-    kSwept = 128,      // kActive and not kChained: solved row by row by the velocity sweep
+    kInBlock = 64,     // a link solved with the links it hangs with as one block (LinkBlocks)
+    kSwept = 128,      // kActive and not kInBlock: solved row by row by the velocity sweep
   };
 };
 

@@ -130,7 +130,7 @@ void ContactResolver::solveVelocities(std::vector<Contact>& contacts,
   next_warm_key_.resize(prepared_count_);
   next_warm_normal_.resize(prepared_count_);
   if (!next_warm_friction_.empty()) next_warm_friction_.resize(prepared_count_, Vec3::Zero());
-  if (!links.empty()) prepareChains(inverse_mass, acceleration);
+  if (!links.empty()) prepareLinkBlocks(inverse_mass, acceleration);
   stats.velocity_iterations = resolveVelocities(v, inverse_mass, settings);
   followRestingImpulses(x, v, inverse_mass);
 }
@@ -384,8 +384,8 @@ void ContactResolver::beginPrepare(const Vec3Map& v,
   isolated_corrected_ = false;
   warm_cursor_ = 0;
   row_count_ = 0;
-  chains_.clear();
-  held_knots_.clear();
+  blocks_.clear();
+  fed_knots_.clear();
 }
 
 void ContactResolver::prepare(std::vector<Contact>& contacts, const std::size_t base, Vec3Map& x,
@@ -765,8 +765,8 @@ int ContactResolver::resolveVelocities(Vec3Map& v, const ConstScalarMap& inverse
                                                     : velocityPass<false, true>(v, inverse_mass))
                                         : (backward ? velocityPass<true, false>(v, inverse_mass)
                                                     : velocityPass<false, false>(v, inverse_mass));
-    if (!chains_.empty()) {
-      largest_change = std::max(largest_change, solveChainVelocities(v, inverse_mass));
+    if (!blocks_.empty()) {
+      largest_change = std::max(largest_change, solveLinkBlockVelocities(v, inverse_mass));
     }
     if (largest_change <= settings.velocity_tolerance) break;
   }
@@ -861,7 +861,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
   } else if (next_warm_friction_.empty()) {
     next_warm_friction_.assign(next_warm_key_.size(), Vec3::Zero());
   }
-  for (HeldKnot& held : held_knots_) held.moved.setZero();
+  for (FedKnot& held : fed_knots_) held.moved.setZero();
   int passes = 0;
   bool corrected = true;
   while (corrected && passes < settings.max_iterations) {
@@ -896,7 +896,7 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
           max_closing = std::max(max_closing, closing);
         }
       }
-      if ((row.flags & (Row::kMovable | Row::kChained)) != Row::kMovable) continue;
+      if ((row.flags & (Row::kMovable | Row::kInBlock)) != Row::kMovable) continue;
       Vec3 normal = row.normal;
       Real correction = 0.0;
       if (row.kind == ContactKind::kContact) {
@@ -917,12 +917,12 @@ int ContactResolver::resolvePositions(const std::vector<Contact>& contacts, Vec3
       applyCorrection(row, normal, correction, x, inverse_mass);
       corrected = true;
     }
-    if (!chains_.empty()) {
-      corrected =
-          correctChainPositions(contacts, x, inverse_mass, settings, max_penetration) || corrected;
+    if (!blocks_.empty()) {
+      corrected = correctLinkBlockPositions(contacts, x, inverse_mass, settings, max_penetration) ||
+                  corrected;
     }
   }
-  if (!held_knots_.empty()) feedHeldChains(v, inverse_mass, h);
+  if (!fed_knots_.empty()) feedBlockMoves(v, inverse_mass, h);
   stats.max_closing_velocity = max_closing;
   warm_key_.swap(next_warm_key_);
   warm_normal_.swap(next_warm_normal_);

@@ -11,7 +11,7 @@
 #include "engine/solver/contact.h"
 #include "engine/solver/contact_response.h"
 #include "engine/solver/isolated_contact_batch.h"
-#include "engine/solver/link_chains.h"
+#include "engine/solver/link_blocks.h"
 #include "mass_aggregate_sim/engine/collision/collision_settings.h"
 #include "mass_aggregate_sim/engine/core/types.h"
 
@@ -236,39 +236,40 @@ class ContactResolver {
   inline void applyCorrection(const Row& row, const Vec3& normal, Real correction, Vec3Map& x,
                               const ConstScalarMap& inverse_mass);
 
-  // Chains of links solved as blocks (link_chains.h; chain_passes.cpp): found and their velocity
-  // blocks factored once a substep, solved after each velocity pass's sweep and each position
-  // pass's sweep, which leave their rows alone.
-  void prepareChains(const ConstScalarMap& inverse_mass,
-                     const Eigen::Ref<const Vec3Array>& acceleration);
-  // Scales chain c's turn parts of its targets so its block adds no kinetic energy.
-  void limitChainTurn(std::size_t c);
-  // A chain held at both ends (a rope tied between two points) is solved as SHAKE solves it:
-  // without the turn parts of its targets, and with its position block's moves given back to its
-  // knots as velocity at the end of the position phase (feedHeldChains).
-  void holdChain(std::size_t c, const ConstScalarMap& inverse_mass,
-                 const Eigen::Ref<const Vec3Array>& acceleration);
-  // Adds sign * x of held chain c's knots to what its corrections moved them by.
-  void noteHeldMoves(std::size_t c, const Vec3Map& x, Real sign);
-  void feedHeldChains(Vec3Map& v, const ConstScalarMap& inverse_mass, Real h);
-  Real solveChainVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass);
-  bool correctChainPositions(const std::vector<Contact>& contacts, Vec3Map& x,
-                             const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
-                             Real& max_penetration);
-  // Brings chain c to its lengths for one pass: its Newton step, else row by row. `worst` is its
+  // Links that hang together solved as blocks (link_blocks.h; link_block_passes.cpp): found and
+  // their velocity systems factored once a substep, solved after each velocity pass's sweep and
+  // each position pass's sweep, which leave their rows alone.
+  void prepareLinkBlocks(const ConstScalarMap& inverse_mass,
+                         const Eigen::Ref<const Vec3Array>& acceleration);
+  // Scales block c's turn parts of its targets so its block adds no kinetic energy.
+  void limitBlockTurn(std::size_t c);
+  // A block with more rows than moving knots (a rope tied between two points, a ladder, a ring)
+  // or a knot in three links or more (a Y) is solved as SHAKE solves it: without the turn parts of
+  // its targets, and with its position corrections' moves given back to its knots as velocity at
+  // the end of the position phase (feedBlockMoves).
+  void prepareFedBlock(std::size_t c, const Eigen::Ref<const Vec3Array>& acceleration);
+  // Adds sign * x of fed block c's knots to what its corrections moved them by.
+  void noteFedMoves(std::size_t c, const Vec3Map& x, Real sign);
+  void feedBlockMoves(Vec3Map& v, const ConstScalarMap& inverse_mass, Real h);
+  Real solveLinkBlockVelocities(Vec3Map& v, const ConstScalarMap& inverse_mass);
+  bool correctLinkBlockPositions(const std::vector<Contact>& contacts, Vec3Map& x,
+                                 const ConstScalarMap& inverse_mass,
+                                 const CollisionSettings& settings, Real& max_penetration);
+  // Brings block c to its lengths for one pass: its Newton step, else row by row. `worst` is its
   // worst strain now.
-  void correctChain(std::size_t c, const std::vector<Contact>& contacts, Vec3Map& x,
-                    const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
-                    Real worst, Real& max_penetration);
-  // The share of its length chain entry e is off by in the way a correction would fix (a rod
+  void correctLinkBlock(std::size_t c, const std::vector<Contact>& contacts, Vec3Map& x,
+                        const ConstScalarMap& inverse_mass, const CollisionSettings& settings,
+                        Real worst, Real& max_penetration);
+  // The share of its length block entry e is off by in the way a correction would fix (a rod
   // either way, a cable stretched), with its direction and error; negative for coincident ends.
-  Real chainStrain(std::size_t e, const std::vector<Contact>& contacts, const Vec3Map& x,
+  Real blockStrain(std::size_t e, const std::vector<Contact>& contacts, const Vec3Map& x,
                    Vec3& normal, Real& error) const;
-  // Moves chain c's knots by the impulses its position block solved for (in chains_.rhs).
-  void applyChainPositionBlock(std::size_t c, Real scale, Vec3Map& x,
+  // Moves block c's knots by `scale` times the impulses its position block solved for (in
+  // blocks_.rhs).
+  void applyLinkBlockPositions(std::size_t c, Real scale, Vec3Map& x,
                                const ConstScalarMap& inverse_mass);
-  void saveChainKnots(std::size_t c, const Vec3Map& x);
-  void restoreChainKnots(std::size_t c, Vec3Map& x);
+  void saveBlockKnots(std::size_t c, const Vec3Map& x);
+  void restoreBlockKnots(std::size_t c, Vec3Map& x);
   // Row k's velocity update by itself (Gauss-Seidel), as velocityPass makes it.
   Real solveRowVelocity(std::size_t k, Vec3Map& v, const ConstScalarMap& inverse_mass);
   // Applies impulse j along a row; returns |j| (w_a + w_b), the pass's measure of change.
@@ -282,8 +283,10 @@ class ContactResolver {
     return row.kind == ContactKind::kRod ? std::abs(error) : error;
   }
   Real rowMobility(const Row& row, const ConstScalarMap& inverse_mass) const;  // w_a + w_b
-  // The coupling of chain entry e with the next through their shared knot: s_e s_e+1 w_p n.n'.
-  Real chainCoupling(std::size_t e, const Vec3& normal, const Vec3& next_normal,
+  // The least of w_a and w_b that is not 0.
+  Real leastMobility(const Row& row, const ConstScalarMap& inverse_mass) const;
+  // K_ij's part through one shared knot: s_i s_j w_p n_i.n_j.
+  Real couplingValue(const LinkBlocks::Coupling& coupling, const Vec3& first, const Vec3& second,
                      const ConstScalarMap& inverse_mass) const;
   // The least overlap the position correction may leave this substep to the contact of particles
   // a and b made with `penetration` (see the class comment); -inf without the radii.
@@ -296,23 +299,23 @@ class ContactResolver {
   std::size_t row_count_ = 0;
   std::vector<std::uint32_t> row_contact_;  // per row: its index in the contacts
   std::vector<Real> row_turn_;  // per active link row: the part of its target that turns it
-  LinkChains chains_;
-  std::vector<std::uint8_t> chain_factored_;  // per chain: its velocity block's factors kept
-  std::vector<std::uint8_t> chain_newton_;    // per chain: its position block tried this substep
-  // Per chain entry, in the position passes: its direction and whether it is in the block.
-  std::vector<Vec3> chain_normal_;
-  std::vector<std::uint8_t> chain_included_;
-  std::vector<Vec3> chain_saved_;  // a chain's knots' positions and displacements before a block
-  // The knots of the held chains, each chain's together.
-  struct HeldKnot {
+  LinkBlocks blocks_;
+  std::vector<std::uint8_t> block_factored_;  // per block: its velocity factors kept
+  std::vector<std::uint8_t> block_newton_;    // per block: its Newton step tried this substep
+  // Per block entry, in the position passes: its direction and whether it is in the block.
+  std::vector<Vec3> block_normal_;
+  std::vector<std::uint8_t> block_included_;
+  std::vector<Vec3> block_saved_;  // a block's knots' positions and displacements before a step
+  // The knots of the fed blocks, each block's together.
+  struct FedKnot {
     std::uint32_t knot;
-    std::uint32_t chain;
+    std::uint32_t block;
     Vec3 acceleration;  // over the substep: the forces that work against its moves
-    Vec3 moved;         // by its chain's corrections in this position phase
+    Vec3 moved;         // by its block's corrections in this position phase
   };
-  static constexpr std::size_t kNotHeld = ~std::size_t{0};
-  std::vector<HeldKnot> held_knots_;
-  std::vector<std::size_t> held_begin_;  // per chain: its first held knot, or kNotHeld
+  static constexpr std::size_t kNotFed = ~std::size_t{0};
+  std::vector<FedKnot> fed_knots_;
+  std::vector<std::size_t> fed_begin_;  // per block: its first fed knot, or kNotFed
   // Row k's index in the contacts (k itself when isolated contacts were not looked for).
   std::size_t rowContact(const std::size_t k) const {
     return rows_are_contacts_ ? k : row_contact_[k];
