@@ -30,7 +30,28 @@ Real side(const ParticleRow& row, const std::uint32_t knot) {
   return row.a.particleIndex() == knot ? 1.0 : -1.0;
 }
 
+bool moving(const std::uint32_t knot, const Real* inverse_mass) {
+  return knot != kNoParticle && inverse_mass[knot] > 0.0;
+}
+
 }  // namespace
+
+template <typename Visit>
+void LinkBlocks::forEachNeighbour(const ParticleRow* rows, const std::uint32_t r,
+                                  const Real* inverse_mass, Visit visit) const {
+  for (const std::uint32_t knot : {rows[r].a.particleIndex(), sideB(rows[r])}) {
+    if (!moving(knot, inverse_mass)) continue;
+    for (std::uint32_t n = 0; n < knot_degree_[knot]; ++n) {
+      visit(knot_rows_[knot_start_[knot] + n]);
+    }
+  }
+}
+
+std::size_t LinkBlocks::bandEnd() const {
+  return band_begin_.empty()
+             ? 0
+             : band_begin_.back() + (end(size() - 1) - begin(size() - 1)) * bandwidth_.back();
+}
 
 void LinkBlocks::clear() {
   row_.clear();
@@ -46,9 +67,6 @@ void LinkBlocks::clear() {
 void LinkBlocks::build(ParticleRow* rows, const std::size_t count, const Real* inverse_mass,
                        const std::size_t particles) {
   clear();
-  const auto moving = [&](const std::uint32_t knot) {
-    return knot != kNoParticle && inverse_mass[knot] > 0.0;
-  };
   if (knot_degree_.size() < particles) {
     knot_degree_.resize(particles, 0);
     knot_start_.resize(particles);
@@ -59,7 +77,7 @@ void LinkBlocks::build(ParticleRow* rows, const std::size_t count, const Real* i
     if (!isLink(rows[k])) continue;
     link_rows_.push_back(static_cast<std::uint32_t>(k));
     for (const std::uint32_t knot : {rows[k].a.particleIndex(), sideB(rows[k])}) {
-      if (moving(knot) && knot_degree_[knot]++ == 0) touched_knots_.push_back(knot);
+      if (moving(knot, inverse_mass) && knot_degree_[knot]++ == 0) touched_knots_.push_back(knot);
     }
   }
   // Each moving knot's rows, in row order.
@@ -72,7 +90,7 @@ void LinkBlocks::build(ParticleRow* rows, const std::size_t count, const Real* i
   knot_rows_.resize(total);
   for (const std::uint32_t r : link_rows_) {
     for (const std::uint32_t knot : {rows[r].a.particleIndex(), sideB(rows[r])}) {
-      if (moving(knot)) knot_rows_[knot_start_[knot] + knot_degree_[knot]++] = r;
+      if (moving(knot, inverse_mass)) knot_rows_[knot_start_[knot] + knot_degree_[knot]++] = r;
     }
   }
   seen_.assign(count, 0);
@@ -82,16 +100,11 @@ void LinkBlocks::build(ParticleRow* rows, const std::size_t count, const Real* i
     component_.assign(1, first);
     seen_[first] = 1;
     for (std::size_t k = 0; k < component_.size(); ++k) {
-      const ParticleRow& row = rows[component_[k]];
-      for (const std::uint32_t knot : {row.a.particleIndex(), sideB(row)}) {
-        if (!moving(knot)) continue;
-        for (std::uint32_t n = 0; n < knot_degree_[knot]; ++n) {
-          const std::uint32_t other = knot_rows_[knot_start_[knot] + n];
-          if (seen_[other]) continue;
-          seen_[other] = 1;
-          component_.push_back(other);
-        }
-      }
+      forEachNeighbour(rows, component_[k], inverse_mass, [&](const std::uint32_t other) {
+        if (seen_[other]) return;
+        seen_[other] = 1;
+        component_.push_back(other);
+      });
     }
     if (component_.size() >= 2) addBlock(rows, inverse_mass);
   }
@@ -105,23 +118,17 @@ void LinkBlocks::build(ParticleRow* rows, const std::size_t count, const Real* i
     bounded.resize(n);
     at_bound_.resize(n);
   }
-  const std::size_t band_size =
-      band_begin_.empty()
-          ? 0
-          : band_begin_.back() + (end(size() - 1) - begin(size() - 1)) * bandwidth_.back();
+  const std::size_t band_size = bandEnd();
   for (auto* v : {&band_, &lower_, &work_lower_}) {
     if (v->size() < band_size) v->resize(band_size);
   }
 }
 
 bool LinkBlocks::addBlock(ParticleRow* rows, const Real* inverse_mass) {
-  const auto moving = [&](const std::uint32_t knot) {
-    return knot != kNoParticle && inverse_mass[knot] > 0.0;
-  };
   // A knot in more links than the band holds makes the band too wide whatever the order.
   for (const std::uint32_t r : component_) {
     for (const std::uint32_t knot : {rows[r].a.particleIndex(), sideB(rows[r])}) {
-      if (moving(knot) && knot_degree_[knot] > kMaxBandwidth + 1) return false;
+      if (moving(knot, inverse_mass) && knot_degree_[knot] > kMaxBandwidth + 1) return false;
     }
   }
   // Reverse Cuthill-McKee: a breadth-first order from a row far from the others (the last row
@@ -130,16 +137,11 @@ bool LinkBlocks::addBlock(ParticleRow* rows, const Real* inverse_mass) {
     order_.assign(1, start);
     place_[start] = 0;
     for (std::size_t k = 0; k < order_.size(); ++k) {
-      const ParticleRow& row = rows[order_[k]];
-      for (const std::uint32_t knot : {row.a.particleIndex(), sideB(row)}) {
-        if (!moving(knot)) continue;
-        for (std::uint32_t n = 0; n < knot_degree_[knot]; ++n) {
-          const std::uint32_t other = knot_rows_[knot_start_[knot] + n];
-          if (place_[other] >= 0) continue;
-          place_[other] = static_cast<std::int32_t>(order_.size());
-          order_.push_back(other);
-        }
-      }
+      forEachNeighbour(rows, order_[k], inverse_mass, [&](const std::uint32_t other) {
+        if (place_[other] >= 0) return;
+        place_[other] = static_cast<std::int32_t>(order_.size());
+        order_.push_back(other);
+      });
     }
     for (const std::uint32_t r : order_) place_[r] = -1;
   };
@@ -155,7 +157,7 @@ bool LinkBlocks::addBlock(ParticleRow* rows, const Real* inverse_mass) {
   std::size_t width = 0;
   for (const std::uint32_t r : order_) {
     for (const std::uint32_t knot : {rows[r].a.particleIndex(), sideB(rows[r])}) {
-      if (!moving(knot) || knot_rows_[knot_start_[knot]] != r) continue;
+      if (!moving(knot, inverse_mass) || knot_rows_[knot_start_[knot]] != r) continue;
       for (std::uint32_t i = 0; i < knot_degree_[knot]; ++i) {
         for (std::uint32_t j = i + 1; j < knot_degree_[knot]; ++j) {
           const std::uint32_t x = knot_rows_[knot_start_[knot] + i];
@@ -177,14 +179,11 @@ bool LinkBlocks::addBlock(ParticleRow* rows, const Real* inverse_mass) {
   // Its moving knots, each once (from its first row).
   for (const std::uint32_t r : order_) {
     for (const std::uint32_t knot : {rows[r].a.particleIndex(), sideB(rows[r])}) {
-      if (moving(knot) && knot_rows_[knot_start_[knot]] == r) knots_.push_back(knot);
+      if (moving(knot, inverse_mass) && knot_rows_[knot_start_[knot]] == r) knots_.push_back(knot);
     }
   }
   knot_begin_.push_back(knots_.size());
-  const std::size_t band_base =
-      band_begin_.empty()
-          ? 0
-          : band_begin_.back() + (end(size() - 1) - begin(size() - 1)) * bandwidth_.back();
+  const std::size_t band_base = bandEnd();
   for (const std::uint32_t r : order_) {
     row_.push_back(r);
     rows[r].flags =

@@ -93,6 +93,13 @@ class LinkBlocks {
               std::vector<Real>& lower);
   void solve(std::size_t block, const Real* pivot, const std::vector<Real>& lower, Real* x) const;
   bool addBlock(ParticleRow* rows, const Real* inverse_mass);
+  // Calls visit(other) for every link row that shares a moving knot with row r (r among them),
+  // from the knots' row lists that build() makes.
+  template <typename Visit>
+  void forEachNeighbour(const ParticleRow* rows, std::uint32_t r, const Real* inverse_mass,
+                        Visit visit) const;
+  // Where the next block's band starts.
+  std::size_t bandEnd() const;
 
   std::vector<std::uint32_t> row_;
   std::vector<std::size_t> block_begin_{0};
